@@ -1,0 +1,309 @@
+//! The linear image a render produces, and the tone mapping that turns it into display values.
+//!
+//! A [`Film`] holds linear RGB radiance per pixel, stored row-major with the first row at the
+//! top of the image. Tone mapping ([`tonemap`], [`to_rgb8`]) first multiplies by an exposure
+//! factor and then applies one of the [`ToneMap`] curves; the default, [`ToneMap::Linear`], is
+//! the coursework's official mapping (value × 255, clamped, no gamma).
+
+use std::fmt;
+use std::str::FromStr;
+
+use glam::Vec3;
+
+/// Linear RGB radiance, row-major, first row at the top.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Film {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `width * height` pixels, row by row from the top, left to right within a row.
+    pub pixels: Vec<Vec3>,
+}
+
+impl Film {
+    /// A black film of the given size.
+    pub fn new(width: u32, height: u32) -> Film {
+        let len = width as usize * height as usize;
+        Film {
+            width,
+            height,
+            pixels: vec![Vec3::ZERO; len],
+        }
+    }
+
+    /// A film from existing pixels (row-major, first row at the top);
+    /// `pixels.len()` must be `width * height`.
+    pub fn from_pixels(width: u32, height: u32, pixels: Vec<Vec3>) -> Film {
+        debug_assert_eq!(
+            pixels.len(),
+            width as usize * height as usize,
+            "pixel count does not match {width}x{height}"
+        );
+        Film {
+            width,
+            height,
+            pixels,
+        }
+    }
+
+    fn index(&self, x: u32, y: u32) -> usize {
+        debug_assert!(
+            x < self.width && y < self.height,
+            "pixel ({x}, {y}) outside {}x{} film",
+            self.width,
+            self.height
+        );
+        y as usize * self.width as usize + x as usize
+    }
+
+    /// The pixel in column `x`, row `y` (row 0 is the top). Panics if out of range.
+    pub fn get(&self, x: u32, y: u32) -> Vec3 {
+        self.pixels[self.index(x, y)]
+    }
+
+    /// Sets the pixel in column `x`, row `y` (row 0 is the top). Panics if out of range.
+    pub fn set(&mut self, x: u32, y: u32, c: Vec3) {
+        let i = self.index(x, y);
+        self.pixels[i] = c;
+    }
+}
+
+/// How linear radiance is mapped to display values; see [`tonemap`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ToneMap {
+    /// Clamp to [0, 1], no gamma: the coursework's official mapping.
+    #[default]
+    Linear,
+    /// Clamp to [0, 1], then the sRGB transfer curve.
+    Srgb,
+    /// Reinhard `x / (1 + x)` per channel, then the sRGB transfer curve.
+    Reinhard,
+}
+
+impl ToneMap {
+    /// All tone maps, in the order they are listed in messages.
+    pub const ALL: [ToneMap; 3] = [ToneMap::Linear, ToneMap::Srgb, ToneMap::Reinhard];
+
+    /// The lower-case name used by [`FromStr`] and [`Display`](fmt::Display).
+    pub fn name(self) -> &'static str {
+        match self {
+            ToneMap::Linear => "linear",
+            ToneMap::Srgb => "srgb",
+            ToneMap::Reinhard => "reinhard",
+        }
+    }
+}
+
+impl fmt::Display for ToneMap {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Error from parsing a [`ToneMap`] name.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown tone map '{0}' (expected one of: linear, srgb, reinhard)")]
+pub struct ParseToneMapError(pub String);
+
+impl FromStr for ToneMap {
+    type Err = ParseToneMapError;
+
+    /// Parses `linear`, `srgb` or `reinhard` (ASCII case-insensitive, surrounding spaces ignored).
+    fn from_str(s: &str) -> Result<ToneMap, ParseToneMapError> {
+        let t = s.trim();
+        ToneMap::ALL
+            .into_iter()
+            .find(|m| m.name().eq_ignore_ascii_case(t))
+            .ok_or_else(|| ParseToneMapError(s.to_string()))
+    }
+}
+
+/// The sRGB transfer curve (IEC 61966-2-1) of a value in [0, 1], evaluated in f64 so that
+/// 1 maps to exactly 1.
+fn srgb_encode(x: f32) -> f32 {
+    if x <= 0.003_130_8 {
+        12.92 * x
+    } else {
+        (1.055 * f64::from(x).powf(1.0 / 2.4) - 0.055) as f32
+    }
+}
+
+fn tonemap_channel(x: f32, map: ToneMap, exposure: f32) -> f32 {
+    let x = x * exposure;
+    if !x.is_finite() || x <= 0.0 {
+        return 0.0;
+    }
+    match map {
+        ToneMap::Linear => x.min(1.0),
+        ToneMap::Srgb => srgb_encode(x.min(1.0)),
+        ToneMap::Reinhard => srgb_encode(x / (1.0 + x)),
+    }
+    .clamp(0.0, 1.0)
+}
+
+/// Maps one linear radiance value to display [0,1]: first multiplies by `exposure`, then
+/// Linear: clamp(x,0,1) (the coursework's official mapping: value × 255, clamped, no gamma);
+/// Srgb: the sRGB transfer curve (IEC 61966-2-1) of clamp(x,0,1);
+/// Reinhard: x/(1+x) per channel, then the sRGB curve.
+/// Non-finite or negative input maps to 0 (per channel, after the exposure scaling).
+pub fn tonemap(c: Vec3, map: ToneMap, exposure: f32) -> Vec3 {
+    Vec3::new(
+        tonemap_channel(c.x, map, exposure),
+        tonemap_channel(c.y, map, exposure),
+        tonemap_channel(c.z, map, exposure),
+    )
+}
+
+/// A display value in [0, 1] as a byte, rounded to nearest (`floor(v * 255 + 0.5)`).
+fn to_byte(v: f32) -> u8 {
+    (v * 255.0 + 0.5).floor().clamp(0.0, 255.0) as u8
+}
+
+/// 8-bit RGB bytes of the film (rounding x*255+0.5 down, i.e. round to nearest):
+/// `3 * width * height` bytes, row-major from the top row, R, G, B per pixel.
+pub fn to_rgb8(film: &Film, map: ToneMap, exposure: f32) -> Vec<u8> {
+    let mut out = Vec::with_capacity(film.pixels.len() * 3);
+    for &p in &film.pixels {
+        let t = tonemap(p, map, exposure);
+        out.extend_from_slice(&[to_byte(t.x), to_byte(t.y), to_byte(t.z)]);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f32, b: f32) -> bool {
+        (a - b).abs() < 1e-6
+    }
+
+    fn mono(x: f32, map: ToneMap, exposure: f32) -> f32 {
+        let v = tonemap(Vec3::splat(x), map, exposure);
+        assert_eq!(v.x, v.y);
+        assert_eq!(v.y, v.z);
+        v.x
+    }
+
+    #[test]
+    fn new_is_black_and_get_set_are_row_major() {
+        let mut f = Film::new(3, 2);
+        assert_eq!(f.pixels.len(), 6);
+        assert!(f.pixels.iter().all(|&p| p == Vec3::ZERO));
+        f.set(2, 1, Vec3::new(1.0, 2.0, 3.0));
+        assert_eq!(f.get(2, 1), Vec3::new(1.0, 2.0, 3.0));
+        assert_eq!(f.pixels[5], Vec3::new(1.0, 2.0, 3.0));
+        f.set(1, 0, Vec3::X);
+        assert_eq!(f.pixels[1], Vec3::X);
+        let g = Film::from_pixels(3, 2, f.pixels.clone());
+        assert_eq!(g, f);
+    }
+
+    #[test]
+    fn linear_clamps_without_gamma() {
+        assert_eq!(mono(0.5, ToneMap::Linear, 1.0), 0.5);
+        assert_eq!(mono(0.25, ToneMap::Linear, 1.0), 0.25);
+        assert_eq!(mono(2.0, ToneMap::Linear, 1.0), 1.0);
+        assert_eq!(mono(1.0, ToneMap::Linear, 1.0), 1.0);
+        assert_eq!(mono(0.0, ToneMap::Linear, 1.0), 0.0);
+    }
+
+    #[test]
+    fn non_finite_and_negative_map_to_zero() {
+        for map in ToneMap::ALL {
+            assert_eq!(mono(f32::NAN, map, 1.0), 0.0, "{map}");
+            assert_eq!(mono(f32::INFINITY, map, 1.0), 0.0, "{map}");
+            assert_eq!(mono(f32::NEG_INFINITY, map, 1.0), 0.0, "{map}");
+            assert_eq!(mono(-0.5, map, 1.0), 0.0, "{map}");
+            assert_eq!(mono(0.5, map, f32::NAN), 0.0, "{map}");
+        }
+        // Channels are independent.
+        let v = tonemap(Vec3::new(f32::NAN, 0.5, -1.0), ToneMap::Linear, 1.0);
+        assert_eq!(v, Vec3::new(0.0, 0.5, 0.0));
+    }
+
+    #[test]
+    fn srgb_curve_values() {
+        // Linear segment up to and including the 0.0031308 boundary.
+        assert!(close(mono(0.002, ToneMap::Srgb, 1.0), 0.002 * 12.92));
+        assert!(close(mono(0.003_130_8, ToneMap::Srgb, 1.0), 0.040_449_936));
+        // The two pieces meet (nearly) continuously at the boundary.
+        let just_above = mono(0.003_131, ToneMap::Srgb, 1.0);
+        assert!((just_above - 0.040_45).abs() < 1e-4, "{just_above}");
+        // Power segment: 0.5 -> 0.735357, 0.2140 -> ~0.5 (mid-grey).
+        assert!((mono(0.5, ToneMap::Srgb, 1.0) - 0.735_357).abs() < 1e-5);
+        assert!((mono(0.214_041, ToneMap::Srgb, 1.0) - 0.5).abs() < 1e-5);
+        assert_eq!(mono(1.0, ToneMap::Srgb, 1.0), 1.0);
+        assert_eq!(mono(5.0, ToneMap::Srgb, 1.0), 1.0);
+        assert_eq!(mono(0.0, ToneMap::Srgb, 1.0), 0.0);
+    }
+
+    #[test]
+    fn reinhard_then_srgb() {
+        // 1 -> 0.5 before gamma, then the sRGB curve of 0.5.
+        let expected = 1.055 * 0.5f32.powf(1.0 / 2.4) - 0.055;
+        assert!(close(mono(1.0, ToneMap::Reinhard, 1.0), expected));
+        // 3 -> 0.75 before gamma.
+        let expected = 1.055 * 0.75f32.powf(1.0 / 2.4) - 0.055;
+        assert!(close(mono(3.0, ToneMap::Reinhard, 1.0), expected));
+        // Large values approach but never exceed 1.
+        let big = mono(1e6, ToneMap::Reinhard, 1.0);
+        assert!(big > 0.999 && big <= 1.0);
+    }
+
+    #[test]
+    fn exposure_scales_before_mapping() {
+        assert_eq!(mono(0.25, ToneMap::Linear, 2.0), 0.5);
+        assert_eq!(mono(0.75, ToneMap::Linear, 2.0), 1.0);
+        assert!(close(
+            mono(0.5, ToneMap::Reinhard, 2.0),
+            mono(1.0, ToneMap::Reinhard, 1.0)
+        ));
+        assert!(close(
+            mono(1.0, ToneMap::Srgb, 0.5),
+            mono(0.5, ToneMap::Srgb, 1.0)
+        ));
+        assert_eq!(mono(1.0, ToneMap::Linear, 0.0), 0.0);
+    }
+
+    #[test]
+    fn to_rgb8_rounds_to_nearest() {
+        let film = Film::from_pixels(
+            4,
+            1,
+            vec![
+                Vec3::new(0.0, 0.5, 1.0),
+                Vec3::new(2.0, -1.0, f32::NAN),
+                Vec3::splat(1.4 / 255.0),
+                Vec3::splat(1.6 / 255.0),
+            ],
+        );
+        assert_eq!(
+            to_rgb8(&film, ToneMap::Linear, 1.0),
+            vec![0, 128, 255, 255, 0, 0, 1, 1, 1, 2, 2, 2]
+        );
+        let srgb = to_rgb8(
+            &Film::from_pixels(1, 1, vec![Vec3::splat(0.5)]),
+            ToneMap::Srgb,
+            1.0,
+        );
+        assert_eq!(srgb, vec![188, 188, 188]);
+    }
+
+    #[test]
+    fn tone_map_parse_and_display() {
+        assert_eq!("linear".parse::<ToneMap>(), Ok(ToneMap::Linear));
+        assert_eq!("srgb".parse::<ToneMap>(), Ok(ToneMap::Srgb));
+        assert_eq!(" Reinhard ".parse::<ToneMap>(), Ok(ToneMap::Reinhard));
+        let err = "gamma".parse::<ToneMap>().unwrap_err().to_string();
+        assert!(err.contains("gamma"), "{err}");
+        for name in ["linear", "srgb", "reinhard"] {
+            assert!(err.contains(name), "{err}");
+        }
+        for map in ToneMap::ALL {
+            assert_eq!(map.to_string().parse::<ToneMap>(), Ok(map));
+        }
+        assert_eq!(ToneMap::default(), ToneMap::Linear);
+    }
+}

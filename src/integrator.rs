@@ -1,0 +1,214 @@
+//! Whitted-style recursive ray tracing: Blinn-Phong direct lighting with shadow rays, mirror
+//! reflection, and refraction with Fresnel weighting and total internal reflection, bounded by
+//! the scene's `nbounces`.
+//!
+//! For a hit with material `m`, base colour `c` (texture or `diffusecolor`), view direction `v`
+//! and shading normal `n` turned towards the viewer (surfaces are two-sided):
+//!
+//! ```text
+//! L = Σ_lights Σ_samples w·V·E(d)·( kd·c·id·max(0, n·l) + ks·specularcolor·is·max(0, n·h)^p )
+//!   + (kr + kt·F)·L(reflected)  +  kt·(1 − F)·L(refracted)
+//! ```
+//! where `E(d)` is the light's inverse-square fall-off, `w` the sample's share of the light, `V`
+//! the shadow ray's transmittance (opaque blockers give 0, a transmissive one multiplies by its
+//! `kt`), `h = normalize(l + v)`, and `F` the dielectric Fresnel reflectance (1 under total
+//! internal reflection). Reflection and refraction are traced only while the depth is below
+//! `nbounces`.
+
+use crate::accel::Accel;
+use crate::math::{fresnel_dielectric, reflect, refract, Vec2, Vec3};
+use crate::ray::{Hit, Ray};
+use crate::sampling::SampleKey;
+use crate::scene::{RenderMode, Scene};
+
+/// Colour of a hit in `rendermode: binary` (misses are black), as in the CGR specification.
+pub const BINARY_HIT: Vec3 = Vec3::new(1.0, 0.0, 0.0);
+
+/// A light exactly on a surface (an area light drawn onto a ceiling) must not be shadowed by that
+/// surface: shadow rays stop this fraction of their length short of the light.
+const LIGHT_CLEARANCE: f32 = 1e-4;
+
+/// Most transmissive surfaces a shadow ray passes through before it counts as blocked.
+const MAX_SHADOW_CROSSINGS: u32 = 32;
+
+/// Counts of the rays traced, by kind.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RayCounts {
+    pub camera: u64,
+    pub secondary: u64,
+    pub shadow: u64,
+}
+
+impl RayCounts {
+    pub fn total(&self) -> u64 {
+        self.camera + self.secondary + self.shadow
+    }
+
+    pub fn add(&mut self, o: &RayCounts) {
+        self.camera += o.camera;
+        self.secondary += o.secondary;
+        self.shadow += o.shadow;
+    }
+}
+
+/// Traces rays through one scene. Cheap to create; one per worker.
+pub struct Tracer<'a> {
+    pub scene: &'a Scene,
+    pub accel: &'a Accel,
+    /// Cap on recursion on top of the scene's `nbounces`.
+    pub max_depth: u32,
+    pub counts: RayCounts,
+}
+
+impl<'a> Tracer<'a> {
+    pub fn new(scene: &'a Scene, accel: &'a Accel, max_depth: u32) -> Tracer<'a> {
+        Tracer {
+            scene,
+            accel,
+            max_depth,
+            counts: RayCounts::default(),
+        }
+    }
+
+    /// Radiance along a camera ray.
+    pub fn trace_camera(&mut self, ray: &Ray, key: &SampleKey) -> Vec3 {
+        self.counts.camera += 1;
+        let c = self.radiance(ray, 0, key);
+        if c.is_finite() {
+            c.max(Vec3::ZERO)
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    fn radiance(&mut self, ray: &Ray, depth: u32, key: &SampleKey) -> Vec3 {
+        let scene = self.scene;
+        let Some((prim, cand)) = self.accel.closest(&scene.primitives, ray, f32::INFINITY) else {
+            return match scene.mode {
+                RenderMode::Binary => Vec3::ZERO,
+                RenderMode::Phong => scene.background,
+            };
+        };
+        if scene.mode == RenderMode::Binary {
+            return BINARY_HIT;
+        }
+        let primitive = &scene.primitives[prim as usize];
+        let hit = primitive.hit(ray, cand, prim, &scene.meshes);
+        let material = &scene.materials[primitive.material as usize];
+        let front = hit.normal.dot(ray.dir) < 0.0;
+        let (n, ns) = if front {
+            (hit.normal, hit.shading_normal)
+        } else {
+            (-hit.normal, -hit.shading_normal)
+        };
+        let v = -ray.dir;
+        let base = match material.texture {
+            Some(t) => scene.textures[t as usize].sample(hit.uv),
+            None => material.diffuse,
+        };
+
+        let mut color = Vec3::ZERO;
+        for (li, light) in scene.lights.iter().enumerate() {
+            let count = light.sample_count();
+            let light_key = key.stream(li as u64);
+            let intensity = light.intensity();
+            for s in 0..count {
+                let u = if count == 1 {
+                    Vec2::splat(0.5)
+                } else {
+                    light_key.set_point(light.method(), 0, s, count)
+                };
+                let sample = light.sample(u);
+                let to_light = sample.position - hit.point;
+                if to_light.dot(n) <= 0.0 {
+                    continue; // the light is behind the side we see
+                }
+                let d2 = to_light.length_squared();
+                let visibility = self.transmittance(&hit, sample.position);
+                if visibility == 0.0 {
+                    continue;
+                }
+                let l = to_light / d2.sqrt();
+                let e = sample.weight * intensity.falloff(d2) * visibility;
+                let n_dot_l = ns.dot(l).max(0.0);
+                color += material.kd * base * intensity.diffuse * (n_dot_l * e);
+                if material.ks > 0.0 {
+                    let h = (l + v).normalize_or_zero();
+                    let spec = ns.dot(h).max(0.0).powf(material.exponent);
+                    color += material.ks * material.specular * intensity.specular * (spec * e);
+                }
+            }
+        }
+
+        if depth >= scene.nbounces.min(self.max_depth) {
+            return color;
+        }
+        let mut reflect_weight = material.kr;
+        if material.kt > 0.0 {
+            let eta = if front {
+                1.0 / material.eta
+            } else {
+                material.eta
+            };
+            let cos_i = -ray.dir.dot(n);
+            let f = fresnel_dielectric(cos_i, eta);
+            reflect_weight += material.kt * f;
+            let transmit = material.kt * (1.0 - f);
+            if transmit > 0.0 {
+                if let Some(t) = refract(ray.dir, n, eta) {
+                    color += transmit * self.secondary(&hit, t, depth, key, 2);
+                }
+            }
+        }
+        if reflect_weight > 0.0 {
+            let r = reflect(ray.dir, n).normalize();
+            color += reflect_weight * self.secondary(&hit, r, depth, key, 1);
+        }
+        color
+    }
+
+    fn secondary(
+        &mut self,
+        hit: &Hit,
+        dir: Vec3,
+        depth: u32,
+        key: &SampleKey,
+        branch: u64,
+    ) -> Vec3 {
+        self.counts.secondary += 1;
+        let ray = hit.spawn(dir);
+        self.radiance(&ray, depth + 1, &key.stream(0x1000 + branch))
+    }
+
+    /// Fraction of light reaching `hit` from `target`: 0 behind an opaque surface, multiplied by
+    /// `kt` for every transmissive surface crossed.
+    fn transmittance(&mut self, hit: &Hit, target: Vec3) -> f32 {
+        let scene = self.scene;
+        self.counts.shadow += 1;
+        let (ray, dist) = hit.spawn_to(target);
+        let t_max = dist * (1.0 - LIGHT_CLEARANCE);
+        if !scene.has_transmissive {
+            let blocked = self.accel.any(&scene.primitives, &ray, t_max, |_| true);
+            return if blocked { 0.0 } else { 1.0 };
+        }
+        let mut ray = ray;
+        let mut t_max = t_max;
+        let mut through = 1.0;
+        for _ in 0..MAX_SHADOW_CROSSINGS {
+            let Some((p, c)) = self.accel.closest(&scene.primitives, &ray, t_max) else {
+                return through;
+            };
+            let prim = &scene.primitives[p as usize];
+            let material = &scene.materials[prim.material as usize];
+            if !material.is_transmissive() {
+                return 0.0;
+            }
+            through *= material.kt;
+            let h = prim.hit(&ray, c, p, &scene.meshes);
+            let (next, d) = h.spawn_to(target);
+            ray = next;
+            t_max = d * (1.0 - LIGHT_CLEARANCE);
+        }
+        0.0
+    }
+}

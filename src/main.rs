@@ -1,0 +1,187 @@
+//! The `raytracer` command line.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+
+use raytracer::accel::AccelKind;
+use raytracer::film::ToneMap;
+use raytracer::image_io::{write_image, OutputFormat};
+use raytracer::render::{render, RenderOptions};
+use raytracer::sampling::Method;
+use raytracer::scene::{load, LoadOptions};
+
+/// Exit status: the image was written.
+const EXIT_OK: u8 = 0;
+/// Exit status: the scene or an asset is bad, or the output could not be written.
+const EXIT_BAD_INPUT: u8 = 1;
+/// Exit status: the command line is wrong.
+const EXIT_USAGE: u8 = 2;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "raytracer",
+    version,
+    about = "Renders a coursework JSON scene to a PPM, PNG or EXR image.",
+    after_help = "Exit codes: 0 rendered; 1 the scene or an asset is bad (or the image could not be written); 2 usage error.\n\
+                  Output format by extension: .ppm (binary P6), .png (8-bit), .exr (linear 32-bit float, not tone-mapped)."
+)]
+struct Cli {
+    /// The scene file (JSON; comments and trailing commas allowed).
+    scene: PathBuf,
+    /// The image to write: .ppm, .png or .exr.
+    output: PathBuf,
+    /// Samples per pixel (stratified). 1 traces one ray through each pixel centre.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    spp: u32,
+    /// Placement of pixel and lens samples: random or jittered.
+    #[arg(long, default_value = "jittered")]
+    pixel_sampler: Method,
+    /// Seed for every random number (the image is a pure function of the scene, options and seed).
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Override the image width (keeps the aspect ratio unless --height is also given).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    width: Option<u32>,
+    /// Override the image height.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    height: Option<u32>,
+    /// Tone map for 8-bit output: linear (the coursework's: ×255, clamp), srgb, reinhard.
+    #[arg(long, default_value = "linear")]
+    tonemap: ToneMap,
+    /// Multiplies the scene's exposure.
+    #[arg(long, default_value_t = 1.0)]
+    exposure: f32,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Accelerator: auto, none, median.
+    #[arg(long, default_value = "auto")]
+    accel: AccelKind,
+    /// Most primitives per BVH leaf.
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u64).range(1..=255))]
+    leaf_size: u64,
+    /// Cap on reflection/refraction depth, on top of the scene's nbounces.
+    #[arg(long)]
+    max_depth: Option<u32>,
+    /// Extra folder to resolve texture and mesh paths against (repeatable).
+    #[arg(long = "asset-dir")]
+    asset_dirs: Vec<PathBuf>,
+    /// Refuse images with more pixels than this.
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_PIXELS)]
+    max_pixels: u64,
+    /// Refuse scenes whose nbounces is larger than this.
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_BOUNCES)]
+    max_bounces: u32,
+    /// Refuse scenes with more triangles than this.
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_TRIANGLES)]
+    max_triangles: usize,
+    /// No progress bar, no warnings, no summary line.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { EXIT_USAGE } else { EXIT_OK };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    match run(&cli) {
+        Ok(()) => ExitCode::from(EXIT_OK),
+        Err(Failure::Usage(msg)) => {
+            eprintln!("error: {msg}");
+            ExitCode::from(EXIT_USAGE)
+        }
+        Err(Failure::Input(e)) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(EXIT_BAD_INPUT)
+        }
+    }
+}
+
+enum Failure {
+    Usage(String),
+    Input(anyhow::Error),
+}
+
+fn run(cli: &Cli) -> Result<(), Failure> {
+    if OutputFormat::from_path(&cli.output).is_none() {
+        return Err(Failure::Usage(format!(
+            "cannot tell the image format of '{}': use .ppm, .png or .exr",
+            cli.output.display()
+        )));
+    }
+    if same_file(&cli.scene, &cli.output) {
+        return Err(Failure::Usage(format!(
+            "the output '{}' is the scene file itself",
+            cli.output.display()
+        )));
+    }
+    if let Some(t) = cli.threads {
+        if t == 0 {
+            return Err(Failure::Usage("--threads must be at least 1".into()));
+        }
+    }
+    let load_options = LoadOptions {
+        width: cli.width,
+        height: cli.height,
+        asset_dirs: cli.asset_dirs.clone(),
+        max_pixels: cli.max_pixels,
+        max_bounces: cli.max_bounces,
+        max_triangles: cli.max_triangles,
+        ..LoadOptions::default()
+    };
+    let scene = load(&cli.scene, &load_options).map_err(|e| Failure::Input(e.into()))?;
+    if !cli.quiet {
+        for w in &scene.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
+    let options = RenderOptions {
+        spp: cli.spp,
+        pixel_method: cli.pixel_sampler,
+        seed: cli.seed,
+        accel: cli.accel,
+        leaf_size: cli.leaf_size as usize,
+        max_depth: cli.max_depth.unwrap_or(u32::MAX),
+        progress: !cli.quiet && std::io::stderr().is_terminal(),
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(cli.threads.unwrap_or(0))
+        .build()
+        .map_err(|e| Failure::Input(anyhow::anyhow!("cannot start worker threads: {e}")))?;
+    let out = pool.install(|| render(&scene, &options));
+    let exposure = scene.exposure * cli.exposure;
+    write_image(&cli.output, &out.film, cli.tonemap, exposure)
+        .map_err(|e| Failure::Input(e.into()))?;
+    if !cli.quiet {
+        let secs = out.render_time.as_secs_f64();
+        let rays = out.counts.total();
+        eprintln!(
+            "{}: {}×{}, {} spp, {:.3} s (build {:.3} s), {} rays, {:.2} Mrays/s",
+            cli.output.display(),
+            out.film.width,
+            out.film.height,
+            options.spp,
+            secs,
+            out.build_time.as_secs_f64(),
+            rays,
+            rays as f64 / secs.max(1e-9) / 1e6
+        );
+    }
+    Ok(())
+}
+
+/// Whether two paths name the same existing file.
+fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => false,
+    }
+}

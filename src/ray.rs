@@ -1,0 +1,108 @@
+//! Rays, surface hits, and the robust origin offset that keeps spawned rays from re-hitting the
+//! surface they leave.
+
+use crate::math::{Vec2, Vec3};
+
+/// A ray `origin + t·dir`. `dir` need not be unit length for intersection, but every ray the
+/// renderer spawns has a unit direction so that `t` is a distance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ray {
+    pub origin: Vec3,
+    pub dir: Vec3,
+}
+
+impl Ray {
+    pub fn new(origin: Vec3, dir: Vec3) -> Ray {
+        Ray { origin, dir }
+    }
+
+    /// The point at parameter `t`.
+    #[inline]
+    pub fn at(&self, t: f32) -> Vec3 {
+        self.origin + t * self.dir
+    }
+}
+
+/// Where a ray meets a surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hit {
+    /// Ray parameter of the hit.
+    pub t: f32,
+    /// The hit point.
+    pub point: Vec3,
+    /// Per-axis bound on the absolute floating-point error of `point`.
+    pub error: Vec3,
+    /// Unit geometric normal. Spheres and cylinders: outward; triangles: by winding (v1−v0)×(v2−v0).
+    pub normal: Vec3,
+    /// Unit shading normal (interpolated vertex normals where a mesh has them), same side as `normal`.
+    pub shading_normal: Vec3,
+    /// Texture coordinates.
+    pub uv: Vec2,
+    /// Index of the primitive that was hit.
+    pub prim: u32,
+}
+
+/// Origin for a ray leaving a surface point `p` (with error bound `error`) with geometric normal `n`
+/// in direction `w`: `p` pushed along `±n` just past its error box, on the side `w` points to, then
+/// rounded away from `p` (pbrt-v4 §6.8.6 "Robust Spawned Ray Origins").
+#[inline]
+pub fn offset_ray_origin(p: Vec3, error: Vec3, n: Vec3, w: Vec3) -> Vec3 {
+    let d = n.abs().dot(error);
+    let mut offset = d * n;
+    if w.dot(n) < 0.0 {
+        offset = -offset;
+    }
+    let mut po = p + offset;
+    for i in 0..3 {
+        if offset[i] > 0.0 {
+            po[i] = crate::math::next_float_up(po[i]);
+        } else if offset[i] < 0.0 {
+            po[i] = crate::math::next_float_down(po[i]);
+        }
+    }
+    po
+}
+
+impl Hit {
+    /// A ray leaving this hit in direction `w` (unit), from a robustly offset origin.
+    #[inline]
+    pub fn spawn(&self, w: Vec3) -> Ray {
+        Ray::new(offset_ray_origin(self.point, self.error, self.normal, w), w)
+    }
+
+    /// A ray from this hit towards `target`, returning the ray (unit direction) and the distance
+    /// from the offset origin to the target.
+    #[inline]
+    pub fn spawn_to(&self, target: Vec3) -> (Ray, f32) {
+        let w = (target - self.point).normalize_or_zero();
+        let origin = offset_ray_origin(self.point, self.error, self.normal, w);
+        let to = target - origin;
+        let dist = to.length();
+        (Ray::new(origin, to / dist.max(f32::MIN_POSITIVE)), dist)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn offset_moves_to_the_side_of_the_outgoing_direction() {
+        let p = Vec3::new(1.0, 2.0, 3.0);
+        let err = Vec3::splat(1e-6);
+        let up = offset_ray_origin(p, err, Vec3::Z, Vec3::new(0.0, 0.3, 1.0));
+        let down = offset_ray_origin(p, err, Vec3::Z, Vec3::new(0.0, 0.3, -1.0));
+        assert!(up.z > p.z + 1e-6 * 0.99);
+        assert!(down.z < p.z - 1e-6 * 0.99);
+        assert_eq!(up.x, p.x);
+    }
+
+    #[test]
+    fn zero_error_still_rounds_away() {
+        let p = Vec3::new(0.5, 0.5, 0.5);
+        let o = offset_ray_origin(p, Vec3::ZERO, Vec3::Z, Vec3::Z);
+        assert_eq!(o, p); // zero offset: no rounding step taken
+        let o = offset_ray_origin(p, Vec3::splat(1e-9), Vec3::Z, Vec3::Z);
+        assert!(o.z > p.z);
+    }
+}

@@ -1,0 +1,310 @@
+//! Deterministic sampling. Every random number is a hash of (pixel, sample index, dimension,
+//! seed), so an image is bit-identical whatever the thread count or tile order: no generator state
+//! is carried between pixels or threads.
+//!
+//! Two sample-placement methods, chosen per use (pixel anti-aliasing, thin-lens aperture, each area
+//! light):
+//! - `random`: independent uniform samples;
+//! - `jittered`: stratified. For `n` samples where `n` is a perfect square `k²`, one sample in each
+//!   cell of a `k×k` grid; otherwise one sample in each row and each column of an `n×n` grid
+//!   ("N-rooks", a Latin hypercube), with the column order shuffled per pixel.
+
+use crate::math::{Vec2, Vec3};
+
+/// How a set of samples is placed in the unit square.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Method {
+    /// Independent uniform samples.
+    Random,
+    /// One sample per stratum (see the module docs).
+    #[default]
+    Jittered,
+}
+
+impl std::str::FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Method, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "random" => Ok(Method::Random),
+            "jittered" | "stratified" => Ok(Method::Jittered),
+            other => Err(format!(
+                "unknown sampling method '{other}' (expected random or jittered)"
+            )),
+        }
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Method::Random => "random",
+            Method::Jittered => "jittered",
+        })
+    }
+}
+
+/// A 64-bit mixing function with full avalanche (the finaliser of SplitMix64, Steele et al.,
+/// "Fast Splittable Pseudorandom Number Generators", OOPSLA 2014).
+#[inline]
+pub fn mix64(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// Hashes a sequence of words into one.
+#[inline]
+pub fn hash(words: &[u64]) -> u64 {
+    let mut h = 0x9e37_79b9_7f4a_7c15u64;
+    for &w in words {
+        h = mix64(h ^ w.wrapping_add(0x9e37_79b9_7f4a_7c15));
+    }
+    h
+}
+
+/// A uniform `f32` in `[0, 1)` from the top 24 bits of a hash.
+#[inline]
+pub fn to_unit(h: u64) -> f32 {
+    (h >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
+}
+
+/// The random-number source of one camera sample of one pixel. Values are pure functions of
+/// `(pixel, sample, dimension, index, seed)`; `stream` derives an independent source for a part of
+/// the ray tree (a bounce, a light) so that dimensions never need to be counted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SampleKey {
+    key: u64,
+    /// Index of this camera sample in the pixel, `0..spp`.
+    pub sample: u32,
+    /// Samples per pixel.
+    pub spp: u32,
+    pixel_key: u64,
+}
+
+impl SampleKey {
+    /// The source for camera sample `sample` of `spp` at pixel `(x, y)` under `seed`.
+    pub fn new(x: u32, y: u32, sample: u32, spp: u32, seed: u64) -> SampleKey {
+        let pixel_key = hash(&[x as u64, y as u64, seed]);
+        SampleKey {
+            key: hash(&[pixel_key, sample as u64]),
+            sample,
+            spp,
+            pixel_key,
+        }
+    }
+
+    /// A derived source for a sub-stream (e.g. a bounce or a light), independent of this one.
+    #[inline]
+    pub fn stream(&self, id: u64) -> SampleKey {
+        SampleKey {
+            key: hash(&[self.key, id]),
+            pixel_key: hash(&[self.pixel_key, id]),
+            ..*self
+        }
+    }
+
+    /// A uniform value in `[0, 1)` for `dimension`.
+    #[inline]
+    pub fn uniform(&self, dimension: u64) -> f32 {
+        to_unit(hash(&[self.key, dimension]))
+    }
+
+    /// Two uniform values for dimensions `2·dimension` and `2·dimension + 1`.
+    #[inline]
+    pub fn uniform2(&self, dimension: u64) -> Vec2 {
+        Vec2::new(self.uniform(2 * dimension), self.uniform(2 * dimension + 1))
+    }
+
+    /// This camera sample's point in the unit square for a per-pixel pattern of `spp` points (pixel
+    /// anti-aliasing, lens positions), placed with `method`. Patterns for different `dimension`s are
+    /// decorrelated by a per-pixel shuffle of the strata.
+    pub fn pixel_pattern(&self, method: Method, dimension: u64) -> Vec2 {
+        let h = hash(&[self.pixel_key, dimension, self.sample as u64]);
+        let u = Vec2::new(to_unit(h), to_unit(mix64(h)));
+        match method {
+            Method::Random => u,
+            Method::Jittered => {
+                let key = (hash(&[self.pixel_key, dimension]) & 0xffff_ffff) as u32;
+                let stratum = permute(self.sample, self.spp, key);
+                stratum_point(stratum, self.spp, u, key.rotate_left(16))
+            }
+        }
+    }
+
+    /// Sample `index` of `count` samples placed with `method` in the unit square, for a set of
+    /// samples taken at one shading point (e.g. the shadow rays towards one area light). `dimension`
+    /// separates different sets at the same point.
+    pub fn set_point(&self, method: Method, dimension: u64, index: u32, count: u32) -> Vec2 {
+        let h = hash(&[self.key, dimension, index as u64]);
+        let u = Vec2::new(to_unit(h), to_unit(mix64(h)));
+        match method {
+            Method::Random => u,
+            Method::Jittered => stratum_point(
+                index,
+                count,
+                u,
+                (hash(&[self.key, dimension]) & 0xffff_ffff) as u32,
+            ),
+        }
+    }
+}
+
+/// The point of stratum `index` out of `count`, offset by `jitter ∈ [0,1)²` inside its stratum.
+/// Perfect squares use a `k×k` grid; other counts use N-rooks with columns shuffled by `shuffle`.
+fn stratum_point(index: u32, count: u32, jitter: Vec2, shuffle: u32) -> Vec2 {
+    let count = count.max(1);
+    let k = (count as f64).sqrt() as u32;
+    if k * k == count {
+        let (i, j) = (index % k, index / k);
+        Vec2::new(
+            (i as f32 + jitter.x) / k as f32,
+            (j as f32 + jitter.y) / k as f32,
+        )
+    } else {
+        let column = permute(index, count, shuffle);
+        Vec2::new(
+            (index as f32 + jitter.x) / count as f32,
+            (column as f32 + jitter.y) / count as f32,
+        )
+        .min(Vec2::splat(1.0 - f32::EPSILON / 2.0))
+    }
+}
+
+/// A pseudo-random permutation of `0..len` evaluated at `i`, keyed by `key`: Kensler's hash-based
+/// permutation with cycle walking ("Correlated Multi-Jittered Sampling", Pixar Technical Memo
+/// 13-01, 2013, listing 3).
+pub fn permute(mut i: u32, len: u32, key: u32) -> u32 {
+    if len <= 1 {
+        return 0;
+    }
+    let mut w = len - 1;
+    w |= w >> 1;
+    w |= w >> 2;
+    w |= w >> 4;
+    w |= w >> 8;
+    w |= w >> 16;
+    loop {
+        i ^= key;
+        i = i.wrapping_mul(0xe170893d);
+        i ^= key >> 16;
+        i ^= (i & w) >> 4;
+        i ^= key >> 8;
+        i = i.wrapping_mul(0x0929eb3f);
+        i ^= key >> 23;
+        i ^= (i & w) >> 1;
+        i = i.wrapping_mul(1 | key >> 27);
+        i = i.wrapping_mul(0x6935fa69);
+        i ^= (i & w) >> 11;
+        i = i.wrapping_mul(0x74dcb303);
+        i ^= (i & w) >> 2;
+        i = i.wrapping_mul(0x9e501cc3);
+        i ^= (i & w) >> 2;
+        i = i.wrapping_mul(0xc860a3df);
+        i &= w;
+        i ^= i >> 5;
+        if i < len {
+            break;
+        }
+    }
+    (i.wrapping_add(key)) % len
+}
+
+/// Maps a point of the unit square to the unit disk, preserving strata (Shirley and Chiu's
+/// concentric mapping, "A Low Distortion Map Between Disk and Square", JGT 2(3), 1997).
+pub fn concentric_disk(u: Vec2) -> Vec2 {
+    let o = 2.0 * u - Vec2::ONE;
+    if o.x == 0.0 && o.y == 0.0 {
+        return Vec2::ZERO;
+    }
+    let (r, theta) = if o.x.abs() > o.y.abs() {
+        (o.x, std::f32::consts::FRAC_PI_4 * (o.y / o.x))
+    } else {
+        (
+            o.y,
+            std::f32::consts::FRAC_PI_2 - std::f32::consts::FRAC_PI_4 * (o.x / o.y),
+        )
+    };
+    r * Vec2::new(theta.cos(), theta.sin())
+}
+
+/// A uniformly distributed unit direction (used by tests and benchmarks).
+pub fn uniform_sphere(u: Vec2) -> Vec3 {
+    let z = 1.0 - 2.0 * u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * std::f32::consts::PI * u.y;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn permute_is_a_bijection() {
+        for len in [1u32, 2, 3, 7, 16, 100, 257] {
+            for key in [0u32, 1, 0xdead_beef] {
+                let mut seen = vec![false; len as usize];
+                for i in 0..len {
+                    let p = permute(i, len, key);
+                    assert!(p < len);
+                    assert!(!seen[p as usize], "len {len} key {key}: {p} twice");
+                    seen[p as usize] = true;
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn jittered_square_counts_fill_every_cell_once() {
+        let key = SampleKey::new(3, 4, 0, 1, 7);
+        let mut cells = [0u32; 16];
+        for i in 0..16 {
+            let p = key.set_point(Method::Jittered, 5, i, 16);
+            assert!(p.x >= 0.0 && p.x < 1.0 && p.y >= 0.0 && p.y < 1.0);
+            cells[(p.y * 4.0) as usize * 4 + (p.x * 4.0) as usize] += 1;
+        }
+        assert!(cells.iter().all(|&c| c == 1), "{cells:?}");
+    }
+
+    #[test]
+    fn jittered_other_counts_are_latin_hypercubes() {
+        let n = 12;
+        let mut rows = vec![0u32; n];
+        let mut cols = vec![0u32; n];
+        for s in 0..n as u32 {
+            let p = SampleKey::new(1, 2, s, n as u32, 9).pixel_pattern(Method::Jittered, 0);
+            rows[(p.x * n as f32) as usize] += 1;
+            cols[(p.y * n as f32) as usize] += 1;
+        }
+        assert!(rows.iter().all(|&c| c == 1) && cols.iter().all(|&c| c == 1));
+    }
+
+    #[test]
+    fn values_depend_only_on_their_coordinates() {
+        let a = SampleKey::new(10, 20, 3, 8, 42);
+        let b = SampleKey::new(10, 20, 3, 8, 42);
+        assert_eq!(a.uniform(5), b.uniform(5));
+        assert_ne!(a.uniform(5), a.uniform(6));
+        assert_ne!(a.uniform(5), SampleKey::new(10, 20, 3, 8, 43).uniform(5));
+        assert_ne!(a.stream(1).uniform(0), a.stream(2).uniform(0));
+    }
+
+    #[test]
+    fn uniform_values_have_the_right_mean() {
+        let key = SampleKey::new(0, 0, 0, 1, 1);
+        let n = 100_000;
+        let mean: f64 = (0..n).map(|d| key.uniform(d) as f64).sum::<f64>() / n as f64;
+        assert!((mean - 0.5).abs() < 0.005, "{mean}");
+    }
+
+    #[test]
+    fn concentric_disk_stays_inside() {
+        for i in 0..100 {
+            for j in 0..100 {
+                let p = concentric_disk(Vec2::new(i as f32 / 99.0, j as f32 / 99.0));
+                assert!(p.length() <= 1.0 + 1e-6);
+            }
+        }
+        assert_eq!(concentric_disk(Vec2::splat(0.5)), Vec2::ZERO);
+    }
+}

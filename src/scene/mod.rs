@@ -1,0 +1,60 @@
+//! The scene: everything the renderer needs, converted from the JSON file and checked.
+//!
+//! [`load`] reads a scene file in any of the coursework variants (see `docs/scene-format.md`);
+//! the result is immutable and shared by all render threads.
+
+pub mod error;
+pub mod json;
+pub mod load;
+pub mod mesh_file;
+
+pub use error::{SceneError, Warning};
+pub use load::{load, load_str, LoadOptions};
+
+use crate::camera::Camera;
+use crate::geometry::{Mesh, Primitive};
+use crate::light::Light;
+use crate::material::Material;
+use crate::math::Vec3;
+use crate::texture::Texture;
+
+/// `rendermode`: shaded, or hit/miss only.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum RenderMode {
+    #[default]
+    Phong,
+    /// Hits red, misses black.
+    Binary,
+}
+
+/// Which of the coursework's three scene-format variants a file follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Variant {
+    /// 2019: no camera pose, point lights with `intensity`.
+    V2019,
+    /// 2021–23: camera `position`/`lookat`(direction)/`up`, point lights with `is`/`id`.
+    V2021,
+    /// CGR 2024+: `rendermode`, camera `lookAt`(target)/`upVector`/`exposure`.
+    Cgr,
+}
+
+#[derive(Debug, Clone)]
+pub struct Scene {
+    pub variant: Variant,
+    pub camera: Camera,
+    /// Most reflection/refraction bounces after the camera ray.
+    pub nbounces: u32,
+    pub background: Vec3,
+    pub mode: RenderMode,
+    /// Radiance scale applied before tone mapping.
+    pub exposure: f32,
+    pub lights: Vec<Light>,
+    pub primitives: Vec<Primitive>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    pub meshes: Vec<Mesh>,
+    /// Whether any material transmits light (shadow rays must then look through it).
+    pub has_transmissive: bool,
+    /// What the loader skipped or guessed.
+    pub warnings: Vec<Warning>,
+}

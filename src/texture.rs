@@ -1,0 +1,271 @@
+//! Image textures with bilinear, wrapping lookup.
+//!
+//! A [`Texture`] stores RGB texels row-major with row 0 at the top of the image. Values loaded
+//! from 8-bit images are `byte / 255` with no gamma decoding, the same convention as
+//! [`crate::image_io::read_image`].
+//!
+//! Texture coordinates: `uv = (0, 0)` is the top-left corner of texel (0, 0) and `(1, 1)` the
+//! bottom-right corner of the image; `u` runs along columns (rightwards), `v` along rows
+//! (downwards). Texel `(i, j)` has its centre at `((i + 0.5) / width, (j + 0.5) / height)`.
+//! Coordinates repeat outside [0, 1) and bilinear filtering wraps across the edges.
+
+use std::path::Path;
+
+use glam::{Vec2, Vec3};
+
+use crate::image_io::{read_image, ImageError};
+
+/// An RGB image texture.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Texture {
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// `width * height` texels, row-major, row 0 = top of the image; values in [0,1] = byte/255,
+    /// no gamma decoding.
+    pub texels: Vec<Vec3>,
+}
+
+impl Texture {
+    /// Loads a PNG, JPEG or PPM image (anything [`read_image`] reads) as a texture.
+    pub fn load(path: &Path) -> Result<Texture, ImageError> {
+        let film = read_image(path)?;
+        Ok(Texture {
+            width: film.width,
+            height: film.height,
+            texels: film.pixels,
+        })
+    }
+
+    /// A texture from texels (row-major, row 0 at the top); `texels.len()` must be
+    /// `width * height`.
+    pub fn from_texels(width: u32, height: u32, texels: Vec<Vec3>) -> Texture {
+        debug_assert_eq!(
+            texels.len(),
+            width as usize * height as usize,
+            "texel count does not match {width}x{height}"
+        );
+        Texture {
+            width,
+            height,
+            texels,
+        }
+    }
+
+    /// The texel in column `i`, row `j`; black if out of range (only possible for an
+    /// inconsistent texture).
+    fn texel(&self, i: u32, j: u32) -> Vec3 {
+        self.texels
+            .get(j as usize * self.width as usize + i as usize)
+            .copied()
+            .unwrap_or(Vec3::ZERO)
+    }
+
+    /// Bilinear lookup. uv = (0,0) is the top-left corner of texel (0,0); u grows to the right
+    /// (columns), v grows downwards (rows); (1,1) is the bottom-right corner of the image. Texel
+    /// centres sit at ((i+0.5)/width, (j+0.5)/height). Coordinates wrap (repeat) in both
+    /// directions, so u = 1.25 equals u = 0.25; filtering wraps across the edges too.
+    /// Non-finite uv returns texel (0,0). An empty texture returns black.
+    pub fn sample(&self, uv: Vec2) -> Vec3 {
+        if self.width == 0 || self.height == 0 {
+            return Vec3::ZERO;
+        }
+        if !uv.is_finite() {
+            return self.texel(0, 0);
+        }
+        let (i0, i1, fx) = wrap_axis(uv.x, self.width);
+        let (j0, j1, fy) = wrap_axis(uv.y, self.height);
+        let top = self.texel(i0, j0).lerp(self.texel(i1, j0), fx);
+        let bottom = self.texel(i0, j1).lerp(self.texel(i1, j1), fx);
+        top.lerp(bottom, fy)
+    }
+}
+
+/// Blend weights closer than this (in texels) to a texel centre snap to it, so that lookups at
+/// centres given as f32 `(i + 0.5) / n` return the texel exactly despite rounding.
+const CENTRE_SNAP: f64 = 1e-4;
+
+/// For a coordinate `t` along an axis of `n` texels, the two neighbouring texel indices
+/// (wrapped into `0..n`) and the blend weight of the second.
+fn wrap_axis(t: f32, n: u32) -> (u32, u32, f32) {
+    // Reduce to [0, 1) first, in f64 so large coordinates keep their fraction.
+    let t = f64::from(t);
+    let frac = t - t.floor();
+    let x = frac * f64::from(n) - 0.5;
+    let mut x0 = x.floor();
+    let mut w = x - x0;
+    if w < CENTRE_SNAP {
+        w = 0.0;
+    } else if w > 1.0 - CENTRE_SNAP {
+        x0 += 1.0;
+        w = 0.0;
+    }
+    let n = i64::from(n);
+    let i0 = (x0 as i64).rem_euclid(n);
+    let i1 = (i0 + 1) % n;
+    (i0 as u32, i1 as u32, w as f32)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::fs;
+
+    /// A 3x2 texture with distinct texels: value = (column, row, column + 10 * row).
+    fn grid() -> Texture {
+        let mut texels = Vec::new();
+        for j in 0..2 {
+            for i in 0..3 {
+                texels.push(Vec3::new(i as f32, j as f32, (i + 10 * j) as f32));
+            }
+        }
+        Texture::from_texels(3, 2, texels)
+    }
+
+    fn close(a: Vec3, b: Vec3) -> bool {
+        (a - b).abs().max_element() < 1e-5
+    }
+
+    fn centre(t: &Texture, i: u32, j: u32) -> Vec2 {
+        Vec2::new(
+            (i as f32 + 0.5) / t.width as f32,
+            (j as f32 + 0.5) / t.height as f32,
+        )
+    }
+
+    #[test]
+    fn texel_centres_are_exact() {
+        let t = grid();
+        for j in 0..2 {
+            for i in 0..3 {
+                assert_eq!(t.sample(centre(&t, i, j)), t.texels[(j * 3 + i) as usize]);
+            }
+        }
+    }
+
+    #[test]
+    fn midway_between_texels_is_their_mean() {
+        let t = grid();
+        // Between columns 0 and 1 on row 0: u = 1/3, v = 1/4.
+        let m = t.sample(Vec2::new(1.0 / 3.0, 0.25));
+        assert!(close(m, (t.texel(0, 0) + t.texel(1, 0)) * 0.5), "{m}");
+        // Between rows 0 and 1 in column 2: u = 5/6, v = 1/2.
+        let m = t.sample(Vec2::new(5.0 / 6.0, 0.5));
+        assert!(close(m, (t.texel(2, 0) + t.texel(2, 1)) * 0.5), "{m}");
+        // Centre of four texels.
+        let m = t.sample(Vec2::new(2.0 / 3.0, 0.5));
+        let mean = (t.texel(1, 0) + t.texel(2, 0) + t.texel(1, 1) + t.texel(2, 1)) * 0.25;
+        assert!(close(m, mean), "{m}");
+    }
+
+    #[test]
+    fn wraps_across_edges() {
+        let t = grid();
+        // u = 0 lies midway between the last and the first column.
+        let m = t.sample(Vec2::new(0.0, 0.25));
+        assert!(close(m, (t.texel(2, 0) + t.texel(0, 0)) * 0.5), "{m}");
+        // u = 1 is the same place.
+        assert!(close(t.sample(Vec2::new(1.0, 0.25)), m));
+        // v = 0 lies midway between the bottom and the top row.
+        let m = t.sample(Vec2::new(0.5, 0.0));
+        assert!(close(m, (t.texel(1, 1) + t.texel(1, 0)) * 0.5), "{m}");
+        // Repeating coordinates, positive and negative.
+        for uv in [
+            Vec2::new(0.3, 0.6),
+            Vec2::new(0.1, 0.9),
+            Vec2::new(0.95, 0.05),
+        ] {
+            let s = t.sample(uv);
+            for shift in [
+                Vec2::new(1.0, 0.0),
+                Vec2::new(-1.0, 2.0),
+                Vec2::new(3.0, -5.0),
+            ] {
+                assert!(close(t.sample(uv + shift), s), "{uv} + {shift}");
+            }
+        }
+        assert!(close(
+            t.sample(Vec2::new(1.25, 0.25)),
+            t.sample(Vec2::new(0.25, 0.25))
+        ));
+    }
+
+    #[test]
+    fn v_zero_row_is_the_top_row() {
+        // 1x2 texture: top row red, bottom row blue.
+        let t = Texture::from_texels(1, 2, vec![Vec3::X, Vec3::Z]);
+        assert_eq!(t.sample(Vec2::new(0.5, 0.25)), Vec3::X);
+        assert_eq!(t.sample(Vec2::new(0.5, 0.75)), Vec3::Z);
+        // Just below the top edge is mostly the top row.
+        let near_top = t.sample(Vec2::new(0.5, 0.2));
+        assert!(near_top.x > near_top.z, "{near_top}");
+    }
+
+    #[test]
+    fn non_finite_uv_returns_first_texel() {
+        let t = grid();
+        for uv in [
+            Vec2::new(f32::NAN, 0.5),
+            Vec2::new(0.5, f32::INFINITY),
+            Vec2::new(f32::NEG_INFINITY, f32::NAN),
+        ] {
+            assert_eq!(t.sample(uv), t.texel(0, 0));
+        }
+        assert_eq!(
+            Texture::from_texels(0, 0, vec![]).sample(Vec2::ZERO),
+            Vec3::ZERO
+        );
+    }
+
+    #[test]
+    fn single_texel_is_constant() {
+        let t = Texture::from_texels(1, 1, vec![Vec3::new(0.2, 0.4, 0.6)]);
+        for uv in [Vec2::ZERO, Vec2::new(0.7, 0.3), Vec2::new(-3.2, 9.9)] {
+            assert!(close(t.sample(uv), Vec3::new(0.2, 0.4, 0.6)));
+        }
+    }
+
+    #[test]
+    fn loads_ppm_texture() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("tex.ppm");
+        let mut bytes = b"P6\n2 2\n255\n".to_vec();
+        bytes.extend_from_slice(&[255, 0, 0, 0, 255, 0, 0, 0, 255, 51, 102, 153]);
+        fs::write(&path, bytes).unwrap();
+        let t = Texture::load(&path).unwrap();
+        assert_eq!((t.width, t.height), (2, 2));
+        assert_eq!(t.texels[0], Vec3::X);
+        assert_eq!(t.texels[1], Vec3::Y);
+        assert_eq!(t.texels[2], Vec3::Z);
+        assert_eq!(t.texels[3], Vec3::new(0.2, 0.4, 0.6));
+        assert_eq!(t.sample(Vec2::new(0.75, 0.25)), Vec3::Y);
+    }
+
+    #[test]
+    fn load_errors_name_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("broken.png");
+        fs::write(&path, b"\x89PNG\r\n\x1a\n").unwrap();
+        let err = Texture::load(&path).unwrap_err();
+        assert!(err.to_string().contains("broken.png"), "{err}");
+    }
+
+    #[test]
+    fn loads_coursework_jpeg() {
+        let path = Path::new("/work/shared/coursework/official/sicily.jpg");
+        if !path.exists() {
+            eprintln!("skipping: {} not present", path.display());
+            return;
+        }
+        let t = Texture::load(path).unwrap();
+        assert_eq!((t.width, t.height), (600, 494));
+        assert_eq!(t.texels.len(), 600 * 494);
+        assert!(t
+            .texels
+            .iter()
+            .all(|c| c.min_element() >= 0.0 && c.max_element() <= 1.0));
+        // Not a blank image.
+        assert!(t.texels.iter().any(|c| *c != t.texels[0]));
+    }
+}
