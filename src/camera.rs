@@ -13,6 +13,18 @@ use crate::math::{Vec2, Vec3};
 use crate::ray::Ray;
 use crate::sampling::concentric_disk;
 
+/// Which way the image's x axis points. The 2019 and 2021–23 variants use `forward × up` (the
+/// official reference render shows the wall at x = −2 on the left); CGR files use `up × forward`
+/// (renders of the CGR test scenes are mirrored otherwise).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Handedness {
+    /// right = forward × up.
+    #[default]
+    ForwardCrossUp,
+    /// right = up × forward.
+    UpCrossForward,
+}
+
 /// The depth-of-field part of a thin-lens camera.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Lens {
@@ -42,10 +54,12 @@ pub struct Camera {
 impl Camera {
     /// A camera at `position` looking along `direction` with the up hint `up` (any length, not
     /// necessarily orthogonal to `direction`). `None` when `direction` is zero or parallel to `up`.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         position: Vec3,
         direction: Vec3,
         up: Vec3,
+        handedness: Handedness,
         width: u32,
         height: u32,
         fov_y_degrees: f32,
@@ -54,6 +68,10 @@ impl Camera {
         let forward = direction.try_normalize()?;
         let right = forward.cross(up).try_normalize()?;
         let up = right.cross(forward);
+        let right = match handedness {
+            Handedness::ForwardCrossUp => right,
+            Handedness::UpCrossForward => -right,
+        };
         Some(Camera {
             position,
             forward,
@@ -94,7 +112,17 @@ mod tests {
     use super::*;
 
     fn cam(lens: Option<Lens>) -> Camera {
-        Camera::new(Vec3::ZERO, Vec3::Y, Vec3::Z, 200, 100, 90.0, lens).unwrap()
+        Camera::new(
+            Vec3::ZERO,
+            Vec3::Y,
+            Vec3::Z,
+            Handedness::default(),
+            200,
+            100,
+            90.0,
+            lens,
+        )
+        .unwrap()
     }
 
     #[test]
@@ -102,11 +130,25 @@ mod tests {
         let c = cam(None);
         assert_eq!(c.right, Vec3::X);
         assert_eq!(c.up, Vec3::Z);
+        let mirrored = Camera::new(
+            Vec3::ZERO,
+            Vec3::Y,
+            Vec3::Z,
+            Handedness::UpCrossForward,
+            8,
+            8,
+            35.0,
+            None,
+        )
+        .unwrap();
+        assert_eq!(mirrored.right, -Vec3::X);
+        assert_eq!(mirrored.up, Vec3::Z);
         // An up hint that is not unit length nor orthogonal is orthonormalised.
         let c = Camera::new(
             Vec3::ZERO,
             Vec3::new(0.0, 1.0, -0.1),
             Vec3::new(0.0, 0.0, 0.5),
+            Handedness::default(),
             8,
             8,
             35.0,
@@ -114,8 +156,28 @@ mod tests {
         )
         .unwrap();
         assert!(c.up.dot(c.forward).abs() < 1e-6 && (c.up.length() - 1.0).abs() < 1e-6);
-        assert!(Camera::new(Vec3::ZERO, Vec3::Z, Vec3::Z, 8, 8, 35.0, None).is_none());
-        assert!(Camera::new(Vec3::ZERO, Vec3::ZERO, Vec3::Z, 8, 8, 35.0, None).is_none());
+        assert!(Camera::new(
+            Vec3::ZERO,
+            Vec3::Z,
+            Vec3::Z,
+            Handedness::default(),
+            8,
+            8,
+            35.0,
+            None
+        )
+        .is_none());
+        assert!(Camera::new(
+            Vec3::ZERO,
+            Vec3::ZERO,
+            Vec3::Z,
+            Handedness::default(),
+            8,
+            8,
+            35.0,
+            None
+        )
+        .is_none());
     }
 
     #[test]

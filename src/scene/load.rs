@@ -18,7 +18,7 @@ use super::error::{SceneError, Warning};
 use super::json::{Node, Source};
 use super::mesh_file::{read_mesh, MeshData};
 use super::{RenderMode, Scene, Variant};
-use crate::camera::{Camera, Lens};
+use crate::camera::{Camera, Handedness, Lens};
 use crate::geometry::{Cylinder, Mesh, MeshUv, Primitive, Shape, Sphere, Triangle};
 use crate::light::{Intensity, Light};
 use crate::material::Material;
@@ -34,6 +34,8 @@ pub const DEFAULT_MAX_BOUNCES: u32 = 64;
 pub const DEFAULT_MAX_TRIANGLES: usize = 50_000_000;
 /// Default cap on shadow rays per shading point for one area light.
 pub const DEFAULT_MAX_LIGHT_SAMPLES: u32 = 65_536;
+/// Index of refraction of a transmissive material that gives none (crown glass).
+pub const DEFAULT_ETA: f32 = 1.5;
 /// `nbounces` when a file has none.
 pub const DEFAULT_NBOUNCES: u32 = 3;
 
@@ -128,6 +130,9 @@ const SHAPE_TYPES: &[&str] = &[
     "box",
 ];
 const LIGHT_TYPES: &[&str] = &["pointlight", "arealight"];
+
+/// Materials defined once by name (`"materials": [{"name": "red", …}]`) and referred to by it.
+type Library<'a, 't> = Vec<(String, Node<'a, 't>)>;
 
 struct Loader<'o> {
     options: &'o LoadOptions,
@@ -262,9 +267,19 @@ impl<'o> Loader<'o> {
                 self.light(&l)?;
             }
         }
-        if let Some(shapes) = scene_node.get_any(&["shapes", "objects"]) {
+        let mut library = Library::new();
+        for holder in [root, &scene_node] {
+            if let Some(list) = holder.get("materials") {
+                for m in list.elements()? {
+                    if let Some(name) = m.get("name") {
+                        library.push((name.str()?.to_string(), m.clone()));
+                    }
+                }
+            }
+        }
+        if let Some(shapes) = scene_node.get_any(&["shapes", "objects", "geometry"]) {
             for s in shapes.elements()? {
-                self.shape(&s, mode)?;
+                self.shape(&s, mode, &library)?;
             }
         }
         let has_transmissive = self.materials.iter().any(Material::is_transmissive);
@@ -305,8 +320,13 @@ impl<'o> Loader<'o> {
                 false
             }
         };
-        let width_node = required(cam, &["width"])?;
-        let height_node = required(cam, &["height"])?;
+        let settings = root.get("settings").filter(|n| n.is_object());
+        let size_holder = match &settings {
+            Some(st) if !cam.has_any(&["width"]) && st.has_any(&["width"]) => st.clone(),
+            _ => cam.clone(),
+        };
+        let width_node = required(&size_holder, &["width"])?;
+        let height_node = required(&size_holder, &["height"])?;
         let (w0, h0) = (width_node.u32()?, height_node.u32()?);
         if w0 == 0 || h0 == 0 {
             let n = if w0 == 0 { &width_node } else { &height_node };
@@ -358,8 +378,18 @@ impl<'o> Loader<'o> {
         let target_keys = ["lookAt", "look_at", "look", "camView", "target"];
         let position = opt_vec3(cam, &position_keys)?;
         let direction = if let Some(n) = cam.get("lookat") {
-            // The 2021–23 skeleton's `lookat` is a direction, not a point.
-            Some((n.vec3()?, n))
+            // The 2021–23 skeleton's `lookat` is a direction, not a point. Some files write a
+            // target point there; a zero direction can only mean that.
+            let d = n.vec3()?;
+            if d == Vec3::ZERO && position.is_some_and(|p| p != Vec3::ZERO) {
+                self.warn(
+                    &n,
+                    "'lookat' is a direction, and [0,0,0] is none; read as the point to look at",
+                );
+                Some((-position.unwrap_or(Vec3::ZERO), n))
+            } else {
+                Some((d, n))
+            }
         } else if let Some(n) = cam.get_any(&target_keys) {
             Some((n.vec3()? - position.unwrap_or(Vec3::ZERO), n))
         } else {
@@ -468,7 +498,12 @@ impl<'o> Loader<'o> {
             None
         };
 
-        let camera = Camera::new(position, dir, up, width, height, fov_y, lens)
+        let handedness = if root.get("rendermode").is_some() {
+            Handedness::UpCrossForward
+        } else {
+            Handedness::ForwardCrossUp
+        };
+        let camera = Camera::new(position, dir, up, handedness, width, height, fov_y, lens)
             .ok_or_else(|| dir_node.error("the viewing direction is zero"))?;
 
         Ok((camera, exposure))
@@ -593,10 +628,17 @@ impl<'o> Loader<'o> {
             let eu = Vec3::X * sw;
             let ev = Vec3::Z * sh;
             (p - 0.5 * eu - 0.5 * ev, eu, ev)
-        } else if let Some(p) = corner("position")? {
+        } else if let Some(p) = match corner("position")? {
+            Some(p) => Some(p),
+            None => l
+                .get("shape")
+                .and_then(|sh| sh.get_any(&["center", "centre", "position"]))
+                .map(|c| c.vec3())
+                .transpose()?,
+        } {
             self.warn(
                 l,
-                "an area light without corners or edges; treated as a point light",
+                "an area light without corners or edges; treated as a point light at its centre",
             );
             self.lights.push(Light::Point {
                 position: p,
@@ -650,7 +692,7 @@ impl<'o> Loader<'o> {
         Ok(())
     }
 
-    fn shape(&mut self, s: &Node, mode: RenderMode) -> Result<(), SceneError> {
+    fn shape(&mut self, s: &Node, mode: RenderMode, library: &Library) -> Result<(), SceneError> {
         if !s.is_object() {
             return Err(s.error(format!("a shape is an object, found {}", s.kind())));
         }
@@ -683,7 +725,7 @@ impl<'o> Loader<'o> {
             );
             return Ok(());
         }
-        let material = self.material(s, mode)?;
+        let material = self.material(s, mode, library)?;
         match kind.as_str() {
             "sphere" | "uvsphere" => {
                 let center = required(s, &["center", "centre", "position"])?.vec3()?;
@@ -766,9 +808,22 @@ impl<'o> Loader<'o> {
                 )?;
             }
             "box" => {
-                let min = required(s, &["min"])?.vec3()?;
-                let max = required(s, &["max"])?.vec3()?;
-                if s.has_any(&["rotation"]) {
+                let (min, max) = if let Some(c) = s.get_any(&["center", "centre"]) {
+                    // Centre and edge lengths along x (`width`), y (`height`), z (`depth`).
+                    let c = c.vec3()?;
+                    let size = Vec3::new(
+                        required(s, &["width"])?.f32()?,
+                        required(s, &["height"])?.f32()?,
+                        required(s, &["depth"])?.f32()?,
+                    );
+                    (c - 0.5 * size, c + 0.5 * size)
+                } else {
+                    (
+                        required(s, &["min"])?.vec3()?,
+                        required(s, &["max"])?.vec3()?,
+                    )
+                };
+                if s.has_any(&["rotation", "rot"]) {
                     self.warn(s, "box rotation is not supported; rendered axis-aligned");
                 }
                 let (p, faces) = box_mesh(min.min(max), min.max(max));
@@ -796,6 +851,12 @@ impl<'o> Loader<'o> {
         }
         if let Some(list) = s.get_any(&["points", "vertices"]) {
             let e = list.elements()?;
+            if n == 4 && e.len() == 3 {
+                // Three corners of a parallelogram: complete it at the corner opposite the one
+                // where the edges meet squarely.
+                let (o, a, b) = right_angle_corner(e[0].vec3()?, e[1].vec3()?, e[2].vec3()?);
+                return Ok(vec![o, o + a, o + a + b, o + b]);
+            }
             if e.len() != n {
                 return Err(list.error(format!("expected {n} points, found {}", e.len())));
             }
@@ -868,46 +929,148 @@ impl<'o> Loader<'o> {
         self.add_mesh(s, data.positions, data.normals, uv, data.faces, material)
     }
 
+    /// A mesh written in the scene file. Spellings: `vertices`/`vs` with `faces`/`fs`/`tris`/
+    /// `triangles` (lists of index lists, polygons are fanned); `vertex`/`face` counts with
+    /// `v0…`/`f0…` keys; `vertexindex` (flat) with `faceindex` (polygon sizes) and `texturemap`
+    /// (per-vertex uv); `points` alone (consecutive triples when the count is a multiple of 3,
+    /// otherwise one convex polygon).
     fn inline_mesh(&self, s: &Node) -> Result<MeshData, SceneError> {
-        let vn = required(s, &["vertices", "vs", "vertex", "points"])?;
         let mut positions = Vec::new();
-        for v in vn.elements()? {
-            positions.push(v.vec3()?);
-        }
-        let fn_ = required(
-            s,
-            &["faces", "fs", "tris", "triangles", "faceindex", "face"],
-        )?;
-        let mut faces = Vec::new();
-        for f in fn_.elements()? {
-            let idx = f.numbers()?;
-            if idx.len() < 3 {
-                return Err(f.error(format!(
-                    "a face needs at least 3 vertex indices, found {}",
-                    idx.len()
+        let counted = s
+            .get("vertex")
+            .filter(|n| n.numbers().is_err() && n.u32().is_ok());
+        let vn = if let Some(count) = counted {
+            for i in 0..count.u32()? {
+                positions.push(required(s, &[&format!("v{i}")])?.vec3()?);
+            }
+            count
+        } else if let Some(list) = s
+            .get("triangles")
+            .filter(|t| t.elements().is_ok_and(|e| e.iter().all(|x| x.is_object())))
+        {
+            // A list of triangle objects, each with its corners.
+            let mut faces = Vec::new();
+            for t in list.elements()? {
+                let n = positions.len() as u32;
+                for k in ["v0", "v1", "v2"] {
+                    positions.push(required(&t, &[k])?.vec3()?);
+                }
+                faces.push([n, n + 1, n + 2]);
+            }
+            if faces.is_empty() {
+                return Err(list.error("the mesh has no triangles"));
+            }
+            return Ok(MeshData {
+                positions,
+                normals: None,
+                uvs: None,
+                faces,
+            });
+        } else {
+            let vn = required(s, &["vertices", "vs", "vertex", "points"])?;
+            for v in vn.elements()? {
+                positions.push(v.vec3()?);
+            }
+            vn
+        };
+        let check = |node: &Node, i: f64| -> Result<u32, SceneError> {
+            if i < 0.0 || i.fract() != 0.0 || i >= positions.len() as f64 {
+                return Err(node.error(format!(
+                    "vertex index {i} is out of range (the mesh has {} vertices)",
+                    positions.len()
                 )));
             }
-            let mut ids = Vec::with_capacity(idx.len());
-            for &i in &idx {
-                if i < 0.0 || i.fract() != 0.0 || i >= positions.len() as f64 {
-                    return Err(f.error(format!(
-                        "vertex index {i} is out of range (the mesh has {} vertices)",
-                        positions.len()
+            Ok(i as u32)
+        };
+        let mut polygons: Vec<(Node, Vec<u32>)> = Vec::new();
+        if let (Some(sizes), Some(flat)) = (s.get("faceindex"), s.get("vertexindex")) {
+            let idx = flat.numbers()?;
+            let mut at = 0usize;
+            for (k, n) in sizes.numbers()?.into_iter().enumerate() {
+                let n = n.max(0.0) as usize;
+                if at + n > idx.len() {
+                    return Err(sizes.error(format!(
+                        "face {k} needs {n} indices but 'vertexindex' has only {} left",
+                        idx.len() - at
                     )));
                 }
-                ids.push(i as u32);
+                let ids = idx[at..at + n]
+                    .iter()
+                    .map(|&i| check(&flat, i))
+                    .collect::<Result<Vec<_>, _>>()?;
+                polygons.push((sizes.clone(), ids));
+                at += n;
+            }
+        } else if let Some(count) = s.get("face").filter(|n| n.u32().is_ok()) {
+            for i in 0..count.u32()? {
+                let f = required(s, &[&format!("f{i}")])?;
+                let ids = f
+                    .numbers()?
+                    .into_iter()
+                    .map(|i| check(&f, i))
+                    .collect::<Result<_, _>>()?;
+                polygons.push((f, ids));
+            }
+        } else if let Some(fnode) = s.get_any(&["faces", "fs", "tris", "triangles", "face"]) {
+            for f in fnode.elements()? {
+                let ids = f
+                    .numbers()?
+                    .into_iter()
+                    .map(|i| check(&f, i))
+                    .collect::<Result<_, _>>()?;
+                polygons.push((f, ids));
+            }
+        } else if vn.path.ends_with("points") && !positions.is_empty() {
+            let n = positions.len() as u32;
+            if n.is_multiple_of(3) {
+                for t in 0..n / 3 {
+                    polygons.push((vn.clone(), vec![3 * t, 3 * t + 1, 3 * t + 2]));
+                }
+            } else {
+                polygons.push((vn.clone(), (0..n).collect()));
+            }
+        } else {
+            return Err(required(s, &["faces", "fs", "tris", "triangles"])
+                .err()
+                .unwrap_or_else(|| s.error("missing faces")));
+        }
+        let mut faces = Vec::new();
+        for (node, ids) in polygons {
+            if ids.len() < 3 {
+                return Err(node.error(format!(
+                    "a face needs at least 3 vertex indices, found {}",
+                    ids.len()
+                )));
             }
             for k in 1..ids.len() - 1 {
                 faces.push([ids[0], ids[k], ids[k + 1]]);
             }
         }
-        if faces.is_empty() {
-            return Err(fn_.error("the mesh has no faces"));
-        }
+        let uvs = match s.get("texturemap") {
+            Some(t) => {
+                let mut uv = Vec::new();
+                for e in t.elements()? {
+                    let v = e.numbers()?;
+                    if v.len() != 2 {
+                        return Err(e.error(format!("expected 2 numbers, found {}", v.len())));
+                    }
+                    uv.push(Vec2::new(v[0] as f32, v[1] as f32));
+                }
+                if uv.len() != positions.len() {
+                    return Err(t.error(format!(
+                        "{} texture coordinates for {} vertices",
+                        uv.len(),
+                        positions.len()
+                    )));
+                }
+                Some(uv)
+            }
+            None => None,
+        };
         Ok(MeshData {
             positions,
             normals: None,
-            uvs: None,
+            uvs,
             faces,
         })
     }
@@ -953,9 +1116,31 @@ impl<'o> Loader<'o> {
         Ok(())
     }
 
-    fn material(&mut self, s: &Node, mode: RenderMode) -> Result<u32, SceneError> {
+    fn material(
+        &mut self,
+        s: &Node,
+        mode: RenderMode,
+        library: &Library,
+    ) -> Result<u32, SceneError> {
         let mut m = Material::default();
-        let node = s.get("material");
+        let mut node = s.get("material");
+        if let Some(named) = node.as_ref().and_then(|n| n.str().ok()) {
+            match library.iter().find(|(name, _)| name == named) {
+                Some((_, def)) => node = Some(def.clone()),
+                None => {
+                    let names: Vec<&str> = library.iter().map(|(n, _)| n.as_str()).collect();
+                    let at = node.unwrap_or_else(|| s.clone());
+                    return Err(at.error(format!(
+                        "no material named '{named}' (the scene defines: {})",
+                        if names.is_empty() {
+                            "none".to_string()
+                        } else {
+                            names.join(", ")
+                        }
+                    )));
+                }
+            }
+        }
         if let Some(n) = &node {
             if !n.is_object() {
                 return Err(n.error(format!("a material is an object, found {}", n.kind())));
@@ -973,6 +1158,7 @@ impl<'o> Loader<'o> {
                     "specular_exponent",
                     "shininess",
                     "exponent",
+                    "alpha",
                 ],
             )? {
                 m.exponent = v;
@@ -993,7 +1179,7 @@ impl<'o> Loader<'o> {
                 .get_any(&["isreflective", "isReflective"])
                 .map(|b| b.bool())
                 .transpose()?;
-            if let Some(v) = opt_f32(n, &["kr", "reflectivity", "reflection"])? {
+            if let Some(v) = opt_f32(n, &["kr", "reflectivity", "reflection", "reflectance"])? {
                 m.kr = if reflective == Some(false) { 0.0 } else { v };
             } else if reflective == Some(true) {
                 m.kr = 1.0;
@@ -1015,12 +1201,12 @@ impl<'o> Loader<'o> {
                 "ior",
             ]) {
                 let v = e.f32()?;
-                if v <= 0.0 {
+                if v <= 0.0 && m.kt > 0.0 {
                     return Err(e.error(format!("the index of refraction must be > 0, found {v}")));
                 }
                 m.eta = v;
             } else {
-                m.eta = 1.5;
+                m.eta = DEFAULT_ETA;
             }
             for (name, v) in [("kd", m.kd), ("ks", m.ks), ("kr", m.kr), ("kt", m.kt)] {
                 if v < 0.0 {
@@ -1044,6 +1230,9 @@ impl<'o> Loader<'o> {
 
     /// A texture reference: a path string, or an object with a path.
     fn texture(&mut self, t: &Node) -> Result<Option<u32>, SceneError> {
+        if matches!(t.value, jsonc_parser::ast::Value::Array(_)) {
+            return Ok(None); // texture coordinates (`texturemap` on meshes), read with the mesh
+        }
         let (node, rel) = if t.is_object() {
             match t.get_any(&["path", "file", "filename", "tPath"]) {
                 Some(p) => {

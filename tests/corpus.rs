@@ -1,0 +1,183 @@
+//! Every real scene file of the coursework corpus (`../shared/coursework/corpus/`) is loaded and
+//! rendered at 64 pixels wide, 1 sample per pixel, at most 2 bounces. None may panic; each either
+//! renders or fails with a clean error. Of the scenes whose assets are all in the corpus, at least
+//! 95% must render, and a scene whose assets are missing must fail by naming the missing file.
+
+use std::collections::BTreeMap;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::{Component, Path, PathBuf};
+
+use raytracer::render::{render, RenderOptions};
+use raytracer::scene::{load, LoadOptions};
+
+fn corpus_dir() -> Option<PathBuf> {
+    let dir = match std::env::var_os("RAYTRACER_CORPUS") {
+        Some(d) => PathBuf::from(d),
+        None => Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/coursework/corpus"),
+    };
+    dir.join("MANIFEST.tsv").is_file().then_some(dir)
+}
+
+/// One scene row of the manifest: the file and its asset references (`ref -> assets/…` or a
+/// reason the asset is absent).
+struct Entry {
+    file: String,
+    refs: Vec<(String, String)>,
+}
+
+fn read_manifest(dir: &Path) -> Vec<Entry> {
+    let text = std::fs::read_to_string(dir.join("MANIFEST.tsv")).expect("manifest readable");
+    let mut out = Vec::new();
+    for line in text.lines().skip(1) {
+        let cols: Vec<&str> = line.split('\t').collect();
+        if cols.len() < 7 || !cols[0].ends_with(".json") || cols[0].contains('/') {
+            continue;
+        }
+        let notes = cols[6];
+        let mut refs = Vec::new();
+        if let Some(rest) = notes.split("assets:").nth(1) {
+            for part in rest.split(';') {
+                if let Some((r, a)) = part.split_once("->") {
+                    refs.push((r.trim().to_string(), a.trim().to_string()));
+                }
+            }
+        }
+        out.push(Entry {
+            file: cols[0].to_string(),
+            refs,
+        });
+    }
+    out
+}
+
+/// A folder `base` such that `base` joined with `reference` (lexically) names `asset`: the asset
+/// path minus the reference's tail, plus one stand-in folder per leading `..`.
+fn base_for(corpus: &Path, reference: &str, asset: &str) -> Option<PathBuf> {
+    let reference = reference.replace('\\', "/");
+    let ups = Path::new(&reference)
+        .components()
+        .take_while(|c| matches!(c, Component::ParentDir | Component::CurDir))
+        .filter(|c| matches!(c, Component::ParentDir))
+        .count();
+    let tail: PathBuf = Path::new(&reference)
+        .components()
+        .skip_while(|c| matches!(c, Component::ParentDir | Component::CurDir))
+        .collect();
+    let asset = Path::new(asset);
+    if !asset.ends_with(&tail) || tail.as_os_str().is_empty() {
+        return None;
+    }
+    let depth = tail.components().count();
+    let mut base: PathBuf = asset
+        .components()
+        .take(asset.components().count() - depth)
+        .collect();
+    for _ in 0..ups {
+        base.push("_");
+    }
+    Some(corpus.join(base))
+}
+
+#[test]
+fn every_corpus_scene_renders_or_fails_cleanly() {
+    let Some(dir) = corpus_dir() else {
+        eprintln!("corpus not found next to the repository; set RAYRACER_CORPUS to run this test");
+        return;
+    };
+    let entries = read_manifest(&dir);
+    assert!(
+        entries.len() >= 200,
+        "manifest lists {} scenes",
+        entries.len()
+    );
+
+    let mut rendered = Vec::new();
+    let mut failed: BTreeMap<String, (bool, String)> = BTreeMap::new();
+    let mut panicked = Vec::new();
+    let mut warnings = 0usize;
+    let mut complete = 0usize;
+    for e in &entries {
+        let assets_present = e.refs.iter().all(|(_, a)| a.starts_with("assets/"));
+        if assets_present {
+            complete += 1;
+        }
+        let asset_dirs: Vec<PathBuf> = e
+            .refs
+            .iter()
+            .filter_map(|(r, a)| base_for(&dir, r, a))
+            .collect();
+        let options = LoadOptions {
+            width: Some(64),
+            asset_dirs,
+            ..LoadOptions::default()
+        };
+        let path = dir.join(&e.file);
+        let result = catch_unwind(AssertUnwindSafe(|| {
+            let scene = load(&path, &options)?;
+            let out = render(
+                &scene,
+                &RenderOptions {
+                    max_depth: 2,
+                    ..RenderOptions::default()
+                },
+            );
+            Ok::<_, raytracer::scene::SceneError>((scene.warnings.len(), out))
+        }));
+        match result {
+            Ok(Ok((w, out))) => {
+                warnings += w;
+                assert_eq!(out.film.width, 64);
+                assert!(out.film.pixels.iter().all(|p| p.is_finite()), "{}", e.file);
+                rendered.push(e.file.clone());
+            }
+            Ok(Err(err)) => {
+                let msg = err.to_string();
+                // Absolute paths from the author's machine are not in the manifest's asset list.
+                let absolute_asset = msg.contains("not found")
+                    && (msg.contains("file '/") || msg.contains(":/") && msg.contains("file 'C:"));
+                let assets_present = assets_present && !absolute_asset;
+                if !assets_present && e.refs.iter().all(|(_, a)| a.starts_with("assets/")) {
+                    complete -= 1;
+                }
+                assert!(
+                    msg.contains(&e.file),
+                    "the error for {} does not name the file: {msg}",
+                    e.file
+                );
+                failed.insert(e.file.clone(), (assets_present, msg));
+            }
+            Err(_) => panicked.push(e.file.clone()),
+        }
+    }
+
+    let complete_failed: Vec<_> = failed.iter().filter(|(_, (p, _))| *p).collect();
+    println!(
+        "corpus: {} scenes, {} rendered, {} clean errors ({} with all assets present), {} panics, {} warnings",
+        entries.len(),
+        rendered.len(),
+        failed.len(),
+        complete_failed.len(),
+        panicked.len(),
+        warnings
+    );
+    for (file, (present, msg)) in &failed {
+        println!(
+            "  {} {file}: {msg}",
+            if *present { "FAILED " } else { "missing" }
+        );
+    }
+    assert!(panicked.is_empty(), "panicked: {panicked:?}");
+    let rendered_complete = complete - complete_failed.len();
+    assert!(
+        rendered_complete * 100 >= complete * 95,
+        "only {rendered_complete} of {complete} scenes with all assets rendered"
+    );
+    for (file, (present, msg)) in &failed {
+        if !present {
+            assert!(
+                msg.contains("not found") || msg.contains("JSON"),
+                "{file} lacks assets but failed for another reason: {msg}"
+            );
+        }
+    }
+}
