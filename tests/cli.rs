@@ -1,0 +1,226 @@
+//! The command line: exit codes, messages that name the file and place, and output files that are
+//! written whole or not at all.
+
+mod common;
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+use common::*;
+
+fn raytracer(args: &[&dyn AsRef<std::ffi::OsStr>]) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_raytracer"));
+    for a in args {
+        cmd.arg(a);
+    }
+    cmd.output().expect("run raytracer")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+const SMALL: &str = r#"{ "nbounces": 1,
+  "camera": { "type": "pinhole", "width": 24, "height": 16, "fov": 40,
+              "position": [0, -4, 1], "lookat": [0, 1, -0.1], "up": [0, 0, 1] },
+  "scene": { "backgroundcolor": [0.1, 0.1, 0.1],
+    "lightsources": [ { "type": "arealight", "v0": [-1, -1, 3], "v1": [1, -1, 3], "v2": [1, 1, 3], "v3": [-1, 1, 3],
+                        "samples": 2, "method": "random", "is": [40, 40, 40], "id": [40, 40, 40] } ],
+    "shapes": [ { "type": "sphere", "center": [0, 0, 0.5], "radius": 0.5,
+                  "material": { "kd": 0.8, "ks": 0.2, "specularexponent": 8, "diffusecolor": [0.9, 0.3, 0.2] } } ] } }"#;
+
+#[test]
+fn renders_the_official_example_to_png_and_ppm() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("example.png");
+    let scene = repo().join("scenes/example.json");
+    let out = raytracer(&[&scene, &png, &"--width", &"200", &"--quiet"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(out.stderr.is_empty(), "--quiet printed: {}", stderr(&out));
+    let film = raytracer::image_io::read_image(&png).unwrap();
+    assert_eq!((film.width, film.height), (200, 200));
+
+    let ppm = dir.path().join("example.ppm");
+    let out = raytracer(&[&scene, &ppm, &"--width", &"40", &"--height", &"30"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let bytes = std::fs::read(&ppm).unwrap();
+    assert!(bytes.starts_with(b"P6\n40 30\n255\n"));
+    assert_eq!(bytes.len(), "P6\n40 30\n255\n".len() + 40 * 30 * 3);
+    // The summary line names resolution, samples, time, rays and throughput.
+    let summary = stderr(&out);
+    assert!(
+        summary.contains("40×30") && summary.contains("1 spp") && summary.contains("Mrays/s"),
+        "{summary}"
+    );
+}
+
+#[test]
+fn same_bytes_on_one_and_two_threads_and_the_seed_matters() {
+    let (dir, scene) = write_scene(SMALL);
+    let run = |name: &str, threads: &str, seed: &str| {
+        let out_path = dir.path().join(name);
+        let o = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+            .args([scene.as_os_str(), out_path.as_os_str()])
+            .args(["--spp", "4", "--seed", seed, "-q"])
+            .env("RAYON_NUM_THREADS", threads)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read(out_path).unwrap()
+    };
+    let one = run("a.png", "1", "0");
+    let two = run("b.png", "2", "0");
+    let again = run("c.png", "2", "0");
+    assert_eq!(one, two);
+    assert_eq!(two, again);
+    assert_ne!(one, run("d.png", "2", "5"));
+}
+
+#[test]
+fn unknown_output_extension_is_a_usage_error() {
+    let (dir, scene) = write_scene(SMALL);
+    let out_path = dir.path().join("out.bmp");
+    let o = raytracer(&[&scene, &out_path]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains(".ppm, .png or .exr"), "{}", stderr(&o));
+    assert!(!out_path.exists());
+    // Bad flags are usage errors too.
+    let o = raytracer(&[&scene, &dir.path().join("x.png"), &"--spp", &"0"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = raytracer(&[&scene, &dir.path().join("x.png"), &"--tonemap", &"gamma"]);
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn output_equal_to_the_input_is_refused_and_the_scene_kept() {
+    let (_dir, scene) = write_scene(SMALL);
+    let before = std::fs::read(&scene).unwrap();
+    let ppm_named_scene = scene.with_extension("ppm");
+    std::fs::copy(&scene, &ppm_named_scene).unwrap();
+    let o = raytracer(&[&ppm_named_scene, &ppm_named_scene]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&ppm_named_scene).unwrap(), before);
+}
+
+/// Broken scenes: exit 1, a message with the file and the place, and no output file (an existing
+/// one is left as it was).
+#[test]
+fn bad_scenes_fail_with_file_line_column_and_path() {
+    let cases: &[(&str, &str, &[&str])] = &[
+        (
+            "syntax",
+            "{ \"camera\": { \"width\": 10,, } }",
+            &["scene.json:1:", "invalid JSON"],
+        ),
+        ("empty", "", &["scene.json", "empty"]),
+        (
+            "missing width",
+            r#"{ "camera": { "height": 10, "fov": 30 } }"#,
+            &["scene.json:1:", "camera", "'width'"],
+        ),
+        (
+            "wrong type",
+            "{ \"camera\": {\n \"width\": \"ten\", \"height\": 10, \"fov\": 30 } }",
+            &["scene.json:2:11", "camera.width", "expected a number"],
+        ),
+        (
+            "nan",
+            r#"{ "camera": { "width": 10, "height": 10, "fov": NaN } }"#,
+            &["camera.fov", "finite"],
+        ),
+        (
+            "negative radius",
+            r#"{ "camera": { "width": 10, "height": 10, "fov": 30 },
+            "scene": { "shapes": [ { "type": "sphere", "center": [0,0,-3], "radius": -1 } ] } }"#,
+            &["scene.shapes[0].radius", "> 0"],
+        ),
+        (
+            "huge image",
+            r#"{ "camera": { "width": 1000000, "height": 1000000, "fov": 30 } }"#,
+            &["camera.width", "limit", "--max-pixels"],
+        ),
+        (
+            "huge nbounces",
+            r#"{ "nbounces": 100000, "camera": { "width": 10, "height": 10, "fov": 30 } }"#,
+            &["nbounces", "limit"],
+        ),
+        (
+            "negative nbounces",
+            r#"{ "nbounces": -1, "camera": { "width": 10, "height": 10, "fov": 30 } }"#,
+            &["nbounces"],
+        ),
+        (
+            "face index",
+            r#"{ "camera": { "width": 10, "height": 10, "fov": 30 },
+            "scene": { "shapes": [ { "type": "trimesh", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "faces": [[0,1,7]] } ] } }"#,
+            &["scene.shapes[0].faces[0]", "out of range"],
+        ),
+        (
+            "missing texture",
+            r#"{ "camera": { "width": 10, "height": 10, "fov": 30 },
+            "scene": { "shapes": [ { "type": "sphere", "center": [0,0,-3], "radius": 1,
+              "material": { "tPath": "../textures/nothing.png" } } ] } }"#,
+            &["material.tPath", "nothing.png", "not found", "tried"],
+        ),
+        (
+            "missing mesh",
+            r#"{ "camera": { "width": 10, "height": 10, "fov": 30 },
+            "scene": { "shapes": [ { "type": "mesh", "mPath": "bunny.ply" } ] } }"#,
+            &["mPath", "bunny.ply", "not found"],
+        ),
+    ];
+    for (name, json, needles) in cases {
+        let (dir, scene) = write_scene(json);
+        let out_path = dir.path().join("out.png");
+        std::fs::write(&out_path, b"keep me").unwrap();
+        let o = raytracer(&[&scene, &out_path]);
+        let msg = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{name}: {msg}");
+        assert!(!msg.contains("panicked"), "{name}: {msg}");
+        for n in *needles {
+            assert!(msg.contains(n), "{name}: message lacks '{n}': {msg}");
+        }
+        assert_eq!(std::fs::read(&out_path).unwrap(), b"keep me", "{name}");
+        let others: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+        assert_eq!(others.len(), 2, "{name}: stray files left behind");
+    }
+}
+
+#[test]
+fn missing_scene_and_unwritable_output_are_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = raytracer(&[&dir.path().join("nope.json"), &dir.path().join("o.png")]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("nope.json"));
+
+    let (dir, scene) = write_scene(SMALL);
+    let out_path = dir.path().join("no/such/folder/out.png");
+    let o = raytracer(&[&scene, &out_path]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("folder"), "{}", stderr(&o));
+    assert!(!Path::new(&out_path).exists());
+}
+
+#[test]
+fn unknown_types_are_skipped_with_a_warning_naming_the_nearest() {
+    let json = SMALL.replace("\"type\": \"sphere\"", "\"type\": \"sphereee\"");
+    let (dir, scene) = write_scene(&json);
+    let o = raytracer(&[&scene, &dir.path().join("o.png")]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let msg = stderr(&o);
+    assert!(
+        msg.contains("warning") && msg.contains("scene.shapes[0].type") && msg.contains("'sphere'"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn exr_output_is_linear() {
+    let (dir, scene) = write_scene(SMALL);
+    let exr = dir.path().join("o.exr");
+    let o = raytracer(&[&scene, &exr, &"-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let film = raytracer::image_io::read_image(&exr).unwrap();
+    // The background is 0.1 exactly, not tone-mapped or quantised.
+    assert_eq!(film.get(0, 0), raytracer::math::Vec3::splat(0.1));
+}
