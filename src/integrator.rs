@@ -31,6 +31,12 @@ const LIGHT_CLEARANCE: f32 = 1e-4;
 /// Most transmissive surfaces a shadow ray passes through before it counts as blocked.
 const MAX_SHADOW_CROSSINGS: u32 = 32;
 
+/// Most reflection and refraction rays one camera sample may spawn. Every glass hit splits into
+/// two rays, so a tree of `nbounces` levels can hold 2^nbounces rays (facing glass panes at
+/// `nbounces: 50` would never finish); past this budget a branch returns only its direct light.
+/// A tree of 12 full levels fits, and no test or bundled scene reaches it.
+pub const MAX_SECONDARY_RAYS_PER_SAMPLE: u32 = 4096;
+
 /// Counts of the rays traced, by kind.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct RayCounts {
@@ -58,6 +64,8 @@ pub struct Tracer<'a> {
     /// Cap on recursion on top of the scene's `nbounces`.
     pub max_depth: u32,
     pub counts: RayCounts,
+    /// Secondary rays left for the current camera sample.
+    budget: u32,
 }
 
 impl<'a> Tracer<'a> {
@@ -67,12 +75,14 @@ impl<'a> Tracer<'a> {
             accel,
             max_depth,
             counts: RayCounts::default(),
+            budget: MAX_SECONDARY_RAYS_PER_SAMPLE,
         }
     }
 
     /// Radiance along a camera ray.
     pub fn trace_camera(&mut self, ray: &Ray, key: &SampleKey) -> Vec3 {
         self.counts.camera += 1;
+        self.budget = MAX_SECONDARY_RAYS_PER_SAMPLE;
         let c = self.radiance(ray, 0, key);
         if c.is_finite() {
             c.max(Vec3::ZERO)
@@ -175,6 +185,10 @@ impl<'a> Tracer<'a> {
         key: &SampleKey,
         branch: u64,
     ) -> Vec3 {
+        if self.budget == 0 {
+            return Vec3::ZERO;
+        }
+        self.budget -= 1;
         self.counts.secondary += 1;
         let ray = hit.spawn(dir);
         self.radiance(&ray, depth + 1, &key.stream(0x1000 + branch))

@@ -300,3 +300,24 @@ fn mirror_reflects_the_scene() {
     let no_bounce = render_default(&json.replace("\"nbounces\": 1", "\"nbounces\": 0")).get(16, 16);
     assert_eq!(no_bounce, Vec3::ZERO);
 }
+
+/// Two facing glass panes at nbounces 50 would spawn 2^50 rays per pixel; the per-sample budget
+/// keeps the render finite and the result finite.
+#[test]
+fn glass_ray_trees_are_bounded() {
+    let json = r#"{ "nbounces": 50,
+      "camera": { "type": "pinhole", "width": 8, "height": 8, "fov": 20,
+                  "position": [0, -5, 0], "lookat": [0, 1, 0], "up": [0, 0, 1] },
+      "scene": { "backgroundcolor": [0.5, 0.5, 0.5],
+        "lightsources": [ { "type": "pointlight", "position": [0, -4, 3], "is": [50, 50, 50], "id": [50, 50, 50] } ],
+        "shapes": [
+          { "type": "plane", "v0": [-3, 0, -3], "v1": [3, 0, -3], "v2": [3, 0, 3], "v3": [-3, 0, 3],
+            "material": { "kd": 0, "ks": 0, "specularexponent": 1, "diffusecolor": [0, 0, 0], "kr": 0.5, "kt": 0.9, "eta": 1.5 } },
+          { "type": "plane", "v0": [-3, 0.5, -3], "v1": [3, 0.5, -3], "v2": [3, 0.5, 3], "v3": [-3, 0.5, 3],
+            "material": { "kd": 0, "ks": 0, "specularexponent": 1, "diffusecolor": [0, 0, 0], "kr": 0.5, "kt": 0.9, "eta": 1.5 } } ] } }"#;
+    let scene = load_json(json);
+    let out = render(&scene, &RenderOptions::default());
+    let per_sample = out.counts.secondary / 64;
+    assert!(per_sample <= raytracer::integrator::MAX_SECONDARY_RAYS_PER_SAMPLE as u64);
+    assert!(out.film.pixels.iter().all(|p| p.is_finite()));
+}
