@@ -155,18 +155,21 @@ pub fn tonemap(c: Vec3, map: ToneMap, exposure: f32) -> Vec3 {
     )
 }
 
-/// A display value in [0, 1] as a byte, rounded to nearest (`floor(v * 255 + 0.5)`).
-fn to_byte(v: f32) -> u8 {
-    (v * 255.0 + 0.5).floor().clamp(0.0, 255.0) as u8
+/// A display value in [0, 1] as a byte. The coursework's linear mapping truncates (`⌊v·255⌋`:
+/// the official render stores the background 0.01 as 2, not 3); the gamma-encoded maps round to
+/// nearest (`⌊v·255 + 0.5⌋`).
+fn to_byte(v: f32, map: ToneMap) -> u8 {
+    let bias = if map == ToneMap::Linear { 0.0 } else { 0.5 };
+    (v * 255.0 + bias).floor().clamp(0.0, 255.0) as u8
 }
 
-/// 8-bit RGB bytes of the film (rounding x*255+0.5 down, i.e. round to nearest):
+/// 8-bit RGB bytes of the film (see [`to_byte`] for the quantisation):
 /// `3 * width * height` bytes, row-major from the top row, R, G, B per pixel.
 pub fn to_rgb8(film: &Film, map: ToneMap, exposure: f32) -> Vec<u8> {
     let mut out = Vec::with_capacity(film.pixels.len() * 3);
     for &p in &film.pixels {
         let t = tonemap(p, map, exposure);
-        out.extend_from_slice(&[to_byte(t.x), to_byte(t.y), to_byte(t.z)]);
+        out.extend_from_slice(&[to_byte(t.x, map), to_byte(t.y, map), to_byte(t.z, map)]);
     }
     out
 }
@@ -268,7 +271,7 @@ mod tests {
     }
 
     #[test]
-    fn to_rgb8_rounds_to_nearest() {
+    fn to_rgb8_truncates_linear_and_rounds_gamma_maps() {
         let film = Film::from_pixels(
             4,
             1,
@@ -281,7 +284,7 @@ mod tests {
         );
         assert_eq!(
             to_rgb8(&film, ToneMap::Linear, 1.0),
-            vec![0, 128, 255, 255, 0, 0, 1, 1, 1, 2, 2, 2]
+            vec![0, 127, 255, 255, 0, 0, 1, 1, 1, 1, 1, 1]
         );
         let srgb = to_rgb8(
             &Film::from_pixels(1, 1, vec![Vec3::splat(0.5)]),

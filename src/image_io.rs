@@ -317,7 +317,7 @@ mod tests {
         );
         write_image(&path, &film, ToneMap::Linear, 1.0).unwrap();
         let mut expected = b"P6\n2 1\n255\n".to_vec();
-        expected.extend_from_slice(&[255, 128, 0, 51, 255, 0]);
+        expected.extend_from_slice(&[255, 127, 0, 51, 255, 0]);
         assert_eq!(fs::read(&path).unwrap(), expected);
         // Only the output remains: the temporary file was renamed, not copied.
         assert_eq!(dir_entries(dir.path()), vec!["out.ppm".to_string()]);
@@ -336,7 +336,7 @@ mod tests {
             .collect();
         let got: Vec<f32> = back.pixels.iter().flat_map(|p| p.to_array()).collect();
         assert_eq!(got, expected);
-        assert_eq!(back.get(2, 0), Vec3::new(128.0 / 255.0, 0.0, 0.0));
+        assert_eq!(back.get(2, 0), Vec3::new(127.0 / 255.0, 0.0, 0.0));
     }
 
     #[test]

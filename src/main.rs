@@ -78,6 +78,9 @@ struct Cli {
     /// Refuse scenes with more triangles than this.
     #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_TRIANGLES)]
     max_triangles: usize,
+    /// Refuse area lights that take more shadow rays per shading point than this.
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_LIGHT_SAMPLES)]
+    max_light_samples: u32,
     /// No progress bar, no warnings, no summary line.
     #[arg(short, long)]
     quiet: bool,
@@ -135,7 +138,7 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         max_pixels: cli.max_pixels,
         max_bounces: cli.max_bounces,
         max_triangles: cli.max_triangles,
-        ..LoadOptions::default()
+        max_light_samples: cli.max_light_samples,
     };
     let scene = load(&cli.scene, &load_options).map_err(|e| Failure::Input(e.into()))?;
     if !cli.quiet {

@@ -8,8 +8,9 @@
 //! - Asset paths (textures, meshes) resolve against the scene file's folder, then each
 //!   [`LoadOptions::asset_dirs`] entry, then the working directory; a missing asset is an error
 //!   that names every path tried.
-//! - Limits on image size, recursion depth and mesh size are checked before anything big is
-//!   allocated.
+//! - Limits on image size, recursion depth, light samples and triangle count are checked before
+//!   the render allocates anything for them (mesh files are read first; their readers refuse
+//!   counts the file cannot hold).
 
 use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
@@ -225,7 +226,7 @@ impl<'o> Loader<'o> {
             },
         };
         let camera_node = required(root, &["camera"])?;
-        let variant = if root.get("rendermode").is_some() {
+        let variant = if is_cgr(root, &camera_node) {
             Variant::Cgr
         } else if camera_node.has_any(&["position", "lookat", "up"]) {
             Variant::V2021
@@ -233,6 +234,12 @@ impl<'o> Loader<'o> {
             Variant::V2019
         };
         let (camera, exposure) = self.camera(root, &camera_node)?;
+        // Hit/miss images are not exposed: a hit is full red whatever the camera says.
+        let exposure = if mode == RenderMode::Binary {
+            1.0
+        } else {
+            exposure
+        };
 
         let nbounces = match root.get_any(&["nbounces", "maxdepth", "max_depth"]) {
             None => DEFAULT_NBOUNCES,
@@ -397,7 +404,7 @@ impl<'o> Loader<'o> {
         };
         let up = opt_vec3(cam, &["up", "upVector", "vup", "camAxis"])?;
         let (position, dir, up, dir_node) = match (position, direction) {
-            (None, None) => (Vec3::ZERO, -Vec3::Z, Vec3::Y, cam.clone()),
+            (None, None) => (Vec3::ZERO, -Vec3::Z, up.unwrap_or(Vec3::Y), cam.clone()),
             (p, Some((d, n))) => (p.unwrap_or(Vec3::ZERO), d, up.unwrap_or(Vec3::Y), n),
             (Some(p), None) => {
                 self.warn(
@@ -461,20 +468,21 @@ impl<'o> Loader<'o> {
                 Some(f) => Some(f),
                 None => opt_f32(root, &["focus_distance", "focusdistance"])?,
             };
-            let focus = match (focus, cam.get_any(&target_keys)) {
-                (Some(f), _) => f,
-                (None, Some(_)) => dir.length(),
-                (None, None) => {
-                    return Err(cam.error(
-                        "a thin-lens camera needs a focus distance ('focusdistance' or a spelling listed in docs/scene-format.md)",
-                    ))
-                }
-            };
             match radius {
                 Some(r) if r < 0.0 => {
                     return Err(cam.error(format!("the aperture must be ≥ 0, found {r}")))
                 }
                 Some(r) if r > 0.0 => {
+                    let focus = match (focus, cam.get_any(&target_keys)) {
+                        (Some(f), _) => f,
+                        // Without a focus distance, focus on the point looked at.
+                        (None, Some(_)) => dir.length(),
+                        (None, None) => {
+                            return Err(cam.error(
+                                "a thin-lens camera needs a focus distance ('focusdistance' or a spelling listed in docs/scene-format.md)",
+                            ))
+                        }
+                    };
                     if focus <= 0.0 {
                         return Err(
                             cam.error(format!("the focus distance must be > 0, found {focus}"))
@@ -498,7 +506,7 @@ impl<'o> Loader<'o> {
             None
         };
 
-        let handedness = if root.get("rendermode").is_some() {
+        let handedness = if is_cgr(root, cam) {
             Handedness::UpCrossForward
         } else {
             Handedness::ForwardCrossUp
@@ -515,16 +523,19 @@ impl<'o> Loader<'o> {
         }
         let type_node = required(l, &["type"])?;
         let kind = type_node.str()?.to_ascii_lowercase();
-        let intensity = self.intensity(l)?;
         match kind.as_str() {
             "pointlight" | "point" | "point_light" => {
+                let intensity = self.intensity(l)?;
                 let position = required(l, &["position", "pos"])?.vec3()?;
                 self.lights.push(Light::Point {
                     position,
                     intensity,
                 });
             }
-            "arealight" | "area" | "area_light" | "quadlight" => self.area_light(l, intensity)?,
+            "arealight" | "area" | "area_light" | "quadlight" => {
+                let intensity = self.intensity(l)?;
+                self.area_light(l, intensity)?
+            }
             other => {
                 let near = nearest(other, LIGHT_TYPES);
                 self.warn(
@@ -591,8 +602,9 @@ impl<'o> Loader<'o> {
         {
             match corner("v3")? {
                 Some(d) => {
-                    let [p0, p1, _, p3] = as_cycle([a, b, c, d]);
-                    (p0, p1 - p0, p3 - p0)
+                    let p = [a, b, c, d];
+                    let [i0, i1, _, i3] = cycle_order(p);
+                    (p[i0], p[i1] - p[i0], p[i3] - p[i0])
                 }
                 None => right_angle_corner(a, b, c),
             }
@@ -773,7 +785,9 @@ impl<'o> Loader<'o> {
                 self.add_mesh(s, p, None, MeshUv::PerVertex(uv), vec![[0, 1, 2]], material)?;
             }
             "plane" | "planarquad" | "planerquad" | "quad" | "rectangle" => {
-                if s.has_any(&["normal", "distance"]) && !s.has_any(&["v0", "points", "point1"]) {
+                let has_corners =
+                    s.has_any(&["v0", "v1", "point1", "p0", "points", "vertices", "corner1"]);
+                if s.has_any(&["normal", "distance"]) && !has_corners {
                     self.warn(
                         s,
                         "infinite planes (normal + distance) are not supported; skipped",
@@ -785,18 +799,18 @@ impl<'o> Loader<'o> {
                 } else {
                     self.corners(s, 4)?
                 };
-                let uv = self.corner_uvs(s, 4)?;
-                let (p, uv) = match uv {
-                    Some(uv) => (p, uv),
-                    None => (
-                        as_cycle([p[0], p[1], p[2], p[3]]).to_vec(),
-                        vec![
-                            Vec2::new(0.0, 0.0),
-                            Vec2::new(1.0, 0.0),
-                            Vec2::new(1.0, 1.0),
-                            Vec2::new(0.0, 1.0),
-                        ],
-                    ),
+                // Corners in "Z order" are put in cycle order; explicit uvs follow their corners,
+                // the default ones put image pixel (0,0) at v0 and the first row along v0→v1.
+                let order = cycle_order([p[0], p[1], p[2], p[3]]);
+                let p = order.iter().map(|&i| p[i]).collect();
+                let uv = match self.corner_uvs(s, 4)? {
+                    Some(uv) => order.iter().map(|&i| uv[i]).collect(),
+                    None => vec![
+                        Vec2::new(0.0, 0.0),
+                        Vec2::new(1.0, 0.0),
+                        Vec2::new(1.0, 1.0),
+                        Vec2::new(0.0, 1.0),
+                    ],
                 };
                 self.add_mesh(
                     s,
@@ -899,7 +913,13 @@ impl<'o> Loader<'o> {
         let mut data = if let Some(fnode) = s.get_any(&file_keys) {
             let rel = fnode.str()?;
             let path = self.resolve(&fnode, rel)?;
-            read_mesh(&path).map_err(|e| fnode.error(e.to_string()))?
+            let mut data = read_mesh(&path).map_err(|e| fnode.error(e.to_string()))?;
+            // PLY and OBJ files put v = 0 at the bottom of the image (the OpenGL convention of
+            // the tools that write them); textures here have v = 0 at the top row.
+            if let Some(uvs) = data.uvs.as_mut() {
+                uvs.iter_mut().for_each(|uv| uv.y = 1.0 - uv.y);
+            }
+            data
         } else {
             self.inline_mesh(s)?
         };
@@ -1161,6 +1181,9 @@ impl<'o> Loader<'o> {
                     "alpha",
                 ],
             )? {
+                if v < 0.0 {
+                    return Err(n.error(format!("the specular exponent must be ≥ 0, found {v}")));
+                }
                 m.exponent = v;
             }
             if let Some(c) = n.get_any(&[
@@ -1283,8 +1306,13 @@ impl<'o> Loader<'o> {
         if rel_path.is_absolute() {
             bases = vec![PathBuf::new()];
         }
-        for b in &bases {
-            let candidate = join_lexically(b, &rel_path);
+        let mut candidates: Vec<PathBuf> =
+            bases.iter().map(|b| join_lexically(b, &rel_path)).collect();
+        // Last, the bare file name beside the scene (assets copied next to it).
+        if let Some(name) = rel_path.file_name() {
+            candidates.push(self.base.join(name));
+        }
+        for candidate in candidates {
             if candidate.is_file() {
                 return Ok(candidate);
             }
@@ -1310,16 +1338,22 @@ const TEXTURE_KEYS: [&str; 7] = [
     "tpath",
 ];
 
-/// Four corners put in cycle order: they already are when the diagonals `p0p2` and `p1p3` share
-/// a midpoint; corners listed as `p0, p1, p2` adjacent-ish with `p3` opposite `p0` (as some files
-/// write them) are reordered.
-fn as_cycle(p: [Vec3; 4]) -> [Vec3; 4] {
+/// Whether a file follows the CGR 2024+ variant: a top-level `rendermode`, or the CGR camera keys
+/// `upVector`/`exposure` (some CGR files omit `rendermode`).
+fn is_cgr(root: &Node, camera: &Node) -> bool {
+    root.get("rendermode").is_some() || camera.has_any(&["upVector", "exposure"])
+}
+
+/// The order that lists four corners as a cycle. They already are when the diagonals `p0p2` and
+/// `p1p3` share a midpoint; corners written in "Z order" (`p3` opposite `p0`, as some files do)
+/// are reordered to `p0, p1, p3, p2`.
+fn cycle_order(p: [Vec3; 4]) -> [usize; 4] {
     let cycle = (p[0] + p[2] - p[1] - p[3]).length_squared();
     let z_order = (p[0] + p[3] - p[1] - p[2]).length_squared();
     if z_order < cycle {
-        [p[0], p[1], p[3], p[2]]
+        [0, 1, 3, 2]
     } else {
-        p
+        [0, 1, 2, 3]
     }
 }
 
@@ -1352,6 +1386,9 @@ fn axis_rectangle(s: &Node, a: Vec3, b: Vec3) -> Result<Vec<Vec3>, SceneError> {
     c1[i] = b[i];
     let mut c3 = a;
     c3[j] = b[j];
+    if d[flat] != 0.0 {
+        return Err(s.error("the corners of an axis-aligned rectangle must share one coordinate"));
+    }
     if d[i] == 0.0 || d[j] == 0.0 {
         return Err(s.error("the rectangle's corners span no area"));
     }
