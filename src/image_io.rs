@@ -212,12 +212,18 @@ where
             source,
         }
     };
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".tmp-image-")
-        .tempfile_in(folder)
-        .map_err(write_err(
-            "cannot create a temporary file in the output folder",
-        ))?;
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".tmp-image-");
+    // Temporary files are private (0600) by default; the image should get the permissions of any
+    // new file (0666 less the umask), as if it had been created directly.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let mut tmp = builder.tempfile_in(folder).map_err(write_err(
+        "cannot create a temporary file in the output folder",
+    ))?;
     {
         let mut out = BufWriter::new(tmp.as_file_mut());
         fill(&mut out)?;

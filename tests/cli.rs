@@ -224,3 +224,19 @@ fn exr_output_is_linear() {
     // The background is 0.1 exactly, not tone-mapped or quantised.
     assert_eq!(film.get(0, 0), raytracer::math::Vec3::splat(0.1));
 }
+
+/// The atomic write goes through a private temporary file; the image must still get the
+/// permissions of any new file in that folder.
+#[cfg(unix)]
+#[test]
+fn output_gets_ordinary_file_permissions() {
+    use std::os::unix::fs::PermissionsExt;
+    let (dir, scene) = write_scene(SMALL);
+    let out_path = dir.path().join("o.png");
+    let o = raytracer(&[&scene, &out_path, &"-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let plain = dir.path().join("plain.txt");
+    std::fs::write(&plain, b"x").unwrap();
+    let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+    assert_eq!(mode(&out_path), mode(&plain));
+}

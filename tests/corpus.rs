@@ -81,7 +81,7 @@ fn base_for(corpus: &Path, reference: &str, asset: &str) -> Option<PathBuf> {
 #[test]
 fn every_corpus_scene_renders_or_fails_cleanly() {
     let Some(dir) = corpus_dir() else {
-        eprintln!("corpus not found next to the repository; set RAYRACER_CORPUS to run this test");
+        eprintln!("corpus not found next to the repository; set RAYTRACER_CORPUS to run this test");
         return;
     };
     let entries = read_manifest(&dir);
@@ -168,6 +168,7 @@ fn every_corpus_scene_renders_or_fails_cleanly() {
     }
     assert!(panicked.is_empty(), "panicked: {panicked:?}");
     let rendered_complete = complete - complete_failed.len();
+    println!("corpus: {rendered_complete} of {complete} scenes with all assets present rendered");
     assert!(
         rendered_complete * 100 >= complete * 95,
         "only {rendered_complete} of {complete} scenes with all assets rendered"

@@ -689,7 +689,7 @@ impl<'o> Loader<'o> {
         if total > self.options.max_light_samples as u64 {
             let n = samples_node.unwrap_or_else(|| l.clone());
             return Err(n.error(format!(
-                "{total} shadow rays per point is over the limit of {}",
+                "{total} shadow rays per point is over the limit of {} (raise it with --max-light-samples)",
                 self.options.max_light_samples
             )));
         }
