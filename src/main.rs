@@ -57,7 +57,7 @@ struct Cli {
     /// Worker threads (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
-    /// Accelerator: auto, none, median.
+    /// Accelerator: auto (SAH BVH, or none for tiny scenes), none, median, sah.
     #[arg(long, default_value = "auto")]
     accel: AccelKind,
     /// Most primitives per BVH leaf.

@@ -2,6 +2,7 @@
 //! surface they leave.
 
 use crate::math::{Vec2, Vec3};
+use glam::{BVec3A, Vec3A};
 
 /// A ray `origin + t·dir`. `dir` need not be unit length for intersection, but every ray the
 /// renderer spawns has a unit direction so that `t` is a distance.
@@ -20,6 +21,53 @@ impl Ray {
     #[inline]
     pub fn at(&self, t: f32) -> Vec3 {
         self.origin + t * self.dir
+    }
+}
+
+/// A ray with the values every box and triangle test of one traversal shares, computed once per
+/// ray instead of once per test: the reciprocal direction and its signs for the slab test, and
+/// the axis permutation and shear of the watertight triangle test (Woop et al. 2013, §3). The
+/// values are computed exactly as the per-test code would, so a test gives the same bits either
+/// way.
+#[derive(Debug, Clone, Copy)]
+pub struct PreparedRay {
+    pub ray: Ray,
+    /// The origin, in SIMD form for the slab test.
+    pub origin: Vec3A,
+    /// `1 / dir` (±∞ for zero components, with the sign of the zero).
+    pub inv_dir: Vec3A,
+    /// `inv_dir · (1 + 2γ(3))`: far slab distances are computed with it, which widens them as
+    /// Ize's robust slab test requires (see [`crate::accel::aabb::slab`]).
+    pub inv_dir_far: Vec3A,
+    /// Per axis, whether `inv_dir` is negative (the ray meets the slab's upper plane first).
+    pub negative: BVec3A,
+    /// The axis of the largest `|dir|` component; the triangle test maps it to z.
+    pub kz: usize,
+    /// Shear `(-d_x/d_z, -d_y/d_z, 1/d_z)` of the permuted direction.
+    pub shear: Vec3,
+    /// Whether the triangle test can run at all (`d_z` nonzero and finite).
+    pub shear_ok: bool,
+}
+
+impl PreparedRay {
+    #[inline]
+    pub fn new(ray: &Ray) -> PreparedRay {
+        let d = ray.dir;
+        let inv_dir = Vec3A::ONE / Vec3A::from(d);
+        let kz = crate::math::max_dimension(d.abs());
+        let kx = if kz == 2 { 0 } else { kz + 1 };
+        let ky = if kx == 2 { 0 } else { kx + 1 };
+        let (dx, dy, dz) = (d[kx], d[ky], d[kz]);
+        PreparedRay {
+            ray: *ray,
+            origin: ray.origin.into(),
+            inv_dir,
+            inv_dir_far: inv_dir * crate::accel::aabb::SLAB_WIDEN,
+            negative: inv_dir.cmplt(Vec3A::ZERO),
+            kz,
+            shear: Vec3::new(-dx / dz, -dy / dz, 1.0 / dz),
+            shear_ok: dz != 0.0 && dz.is_finite(),
+        }
     }
 }
 

@@ -1,6 +1,9 @@
 //! Axis-aligned bounding boxes and the robust ray/box slab test.
 
-use crate::math::{gamma, Vec3};
+use glam::Vec3A;
+
+use crate::math::{Vec3, MACHINE_EPSILON};
+use crate::ray::PreparedRay;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Aabb {
@@ -45,65 +48,90 @@ impl Aabb {
         p.cmpge(self.min - Vec3::splat(tol)).all() && p.cmple(self.max + Vec3::splat(tol)).all()
     }
 
-    /// Slab test: whether the ray `origin + t·dir` (with `inv_dir = 1/dir`) meets the box for some
-    /// `t` in `[0, t_max]`. The far distances are widened by `1 + 2γ(3)` so rounding never culls a
-    /// box the ray touches (Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013), and the min/max
-    /// ordering is written so that a NaN from `0 · ∞` (a ray in a slab's plane) never widens the
-    /// interval: NaN comparisons are false, so such slabs leave it as it was.
+    /// Slab test: whether the ray `origin + t·dir` meets the box for some `t` in `[0, t_max]`.
+    /// See [`slab`].
     #[inline]
-    pub fn hit(&self, origin: Vec3, inv_dir: Vec3, t_max: f32) -> bool {
-        let t0 = (self.min - origin) * inv_dir;
-        let t1 = (self.max - origin) * inv_dir;
-        let mut near = 0.0f32;
-        let mut far = t_max;
-        let widen = 1.0 + 2.0 * gamma(3);
-        for i in 0..3 {
-            // Swap only on a true comparison, so a NaN stays where it is and is ignored below.
-            let (a, b) = if t0[i] > t1[i] {
-                (t1[i], t0[i])
-            } else {
-                (t0[i], t1[i])
-            };
-            let b = b * widen;
-            if a > near {
-                near = a;
-            }
-            if b < far {
-                far = b;
-            }
-            if near > far {
-                return false;
-            }
-        }
-        true
+    pub fn hit(&self, ray: &PreparedRay, t_max: f32) -> bool {
+        slab(self.min.into(), self.max.into(), ray, t_max).0
     }
+}
+
+/// The widening factor `1 + 2γ(3)` of the slab test's far distances (Ize 2013, §3.2).
+pub const SLAB_WIDEN: f32 = 1.0 + 2.0 * (3.0 * MACHINE_EPSILON / (1.0 - 3.0 * MACHINE_EPSILON));
+
+/// Slab test of the box `[lo, hi]` against a prepared ray: whether the ray meets the box for some
+/// `t` in `[0, t_max]`, and the entry distance (at least 0). All three slabs at once in SIMD lanes
+/// (the fourth lane of `lo` and `hi` is ignored).
+///
+/// Robustness (Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013): the far distances are widened by
+/// `1 + 2γ(3)`, so rounding never culls a box the ray touches. They are computed as
+/// `(b − o) · (inv · (1 + 2γ(3)))`: the same four roundings as `((b − o) · inv) · (1 + 2γ(3))`, so
+/// the same error bound holds. The near plane of each slab is chosen by the sign of `inv_dir` (a
+/// direction component of `-0.0` counts as negative, as its reciprocal `-∞` is). A ray lying in a
+/// slab's plane gives `0 · ∞ = NaN` there; `max`/`min` below return their second operand when
+/// the first is NaN, so such a plane is ignored and the ray counts as inside that slab.
+#[inline(always)]
+pub fn slab(lo: Vec3A, hi: Vec3A, r: &PreparedRay, t_max: f32) -> (bool, f32) {
+    let near_plane = Vec3A::select(r.negative, hi, lo);
+    let far_plane = Vec3A::select(r.negative, lo, hi);
+    let t_near = (near_plane - r.origin) * r.inv_dir;
+    let t_far = (far_plane - r.origin) * r.inv_dir_far;
+    // SSE `max(a, b)`/`min(a, b)` return `b` when either is NaN: NaN slabs give 0 and t_max.
+    let near = t_near.max(Vec3A::ZERO).max_element();
+    let far = t_far.min(Vec3A::splat(t_max)).min_element();
+    (near <= far, near)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ray::Ray;
+
+    fn hit(b: &Aabb, o: Vec3, d: Vec3, t_max: f32) -> bool {
+        b.hit(&PreparedRay::new(&Ray::new(o, d)), t_max)
+    }
 
     #[test]
     fn slab_test_hits_misses_and_grazes() {
         let b = Aabb::new(Vec3::ZERO, Vec3::ONE);
-        let inv = |d: Vec3| Vec3::ONE / d;
-        assert!(b.hit(Vec3::new(0.5, 0.5, -1.0), inv(Vec3::Z), f32::INFINITY));
-        assert!(!b.hit(Vec3::new(1.5, 0.5, -1.0), inv(Vec3::Z), f32::INFINITY));
-        assert!(!b.hit(Vec3::new(0.5, 0.5, -1.0), inv(Vec3::Z), 0.5));
-        assert!(!b.hit(Vec3::new(0.5, 0.5, 2.0), inv(Vec3::Z), f32::INFINITY));
-        // Axis-parallel ray exactly in the plane of a face: 0·∞ = NaN must not cull it.
-        assert!(b.hit(Vec3::new(0.0, 0.5, -1.0), inv(Vec3::Z), f32::INFINITY));
+        let inf = f32::INFINITY;
+        assert!(hit(&b, Vec3::new(0.5, 0.5, -1.0), Vec3::Z, inf));
+        assert!(!hit(&b, Vec3::new(1.5, 0.5, -1.0), Vec3::Z, inf));
+        assert!(!hit(&b, Vec3::new(0.5, 0.5, -1.0), Vec3::Z, 0.5));
+        assert!(!hit(&b, Vec3::new(0.5, 0.5, 2.0), Vec3::Z, inf));
+        // Axis-parallel rays exactly in the plane of a face: 0·∞ = NaN must not cull them.
+        assert!(hit(&b, Vec3::new(0.0, 0.5, -1.0), Vec3::Z, inf));
+        assert!(hit(&b, Vec3::new(1.0, 1.0, -1.0), Vec3::Z, inf));
+        // The same with direction components of -0.0, on either face plane.
+        let d = Vec3::new(-0.0, -0.0, 1.0);
+        for o in [
+            Vec3::new(0.0, 0.5, -1.0),
+            Vec3::new(1.0, 0.5, -1.0),
+            Vec3::new(0.5, 1.0, -1.0),
+            Vec3::new(1.0, 0.0, -1.0),
+        ] {
+            assert!(hit(&b, o, d, inf), "{o}");
+        }
+        assert!(!hit(&b, Vec3::new(1.5, 0.5, -1.0), d, inf));
+        assert!(!hit(&b, Vec3::new(-0.5, 0.5, -1.0), d, inf));
         // Origin inside.
-        assert!(b.hit(
-            Vec3::splat(0.5),
-            inv(Vec3::new(1.0, 2.0, 3.0)),
-            f32::INFINITY
-        ));
+        assert!(hit(&b, Vec3::splat(0.5), Vec3::new(1.0, 2.0, 3.0), inf));
+        // A NaN direction or bound never passes.
+        assert!(!hit(&b, Vec3::splat(0.5), Vec3::Z, f32::NAN));
+    }
+
+    #[test]
+    fn widening_is_two_gamma_three() {
+        assert_eq!(SLAB_WIDEN, 1.0 + 2.0 * crate::math::gamma(3));
     }
 
     #[test]
     fn flat_box_is_hit() {
         let b = Aabb::new(Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 1.0, 1.0));
-        assert!(b.hit(Vec3::new(0.5, 0.5, 0.0), Vec3::ONE / Vec3::Z, f32::INFINITY));
+        assert!(hit(&b, Vec3::new(0.5, 0.5, 0.0), Vec3::Z, f32::INFINITY));
+        // Grazing the flat box along its plane's edge, and at the far end of a long ray.
+        assert!(hit(&b, Vec3::new(0.0, 0.0, 0.0), Vec3::Z, f32::INFINITY));
+        let far = Vec3::new(0.3, 0.7, -1.0e6);
+        assert!(hit(&b, far, Vec3::new(0.0, 0.0, 1.0), 1.0e6 + 1.0));
     }
 }

@@ -1,24 +1,63 @@
 //! Ray queries over all primitives of a scene: closest hit for camera, reflection and refraction
 //! rays, and any hit for shadow rays. [`Accel`] hides whether a BVH is used.
+//!
+//! Every accelerator answers exactly as testing every primitive in index order would:
+//! - `closest` returns the primitive hit with the least `t` in `(0, t_max)`; when several are hit
+//!   at the same `t` (coincident or duplicated primitives, a ray through a shared vertex) the one
+//!   with the **least primitive index** wins;
+//! - `any` returns whether at least one primitive accepted by the filter is hit in `(0, t_max)`.
+//!
+//! This holds because each primitive test depends on `t_max` only through a final `t < t_max` on
+//! its computed `t` (so visiting order cannot change a primitive's answer), and because the box
+//! test is conservative (Ize 2013; see [`aabb::slab`]). `tests/accel.rs` checks it bit for bit
+//! against [`Accel::List`] on adversarial rays.
 
 pub mod aabb;
 pub mod bvh;
 
-pub use bvh::{Bvh, BvhOptions};
+pub use bvh::{Bvh, BvhOptions, BvhStats, Split};
 
 use crate::geometry::{Candidate, Primitive};
-use crate::ray::Ray;
+use crate::ray::{PreparedRay, Ray};
 
 /// Which accelerator to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum AccelKind {
-    /// A BVH, except for scenes so small that testing every primitive is as fast.
+    /// The SAH BVH, except for scenes so small that testing every primitive is as fast
+    /// (fewer than [`AUTO_MIN_PRIMITIVES`]).
     #[default]
     Auto,
     /// Test every primitive.
     None,
     /// The median-split BVH (axis cycling per level).
     Median,
+    /// The binned-SAH BVH.
+    Sah,
+}
+
+impl AccelKind {
+    /// Every kind, in the order the benchmark reports them.
+    pub const ALL: [AccelKind; 4] = [
+        AccelKind::Auto,
+        AccelKind::None,
+        AccelKind::Median,
+        AccelKind::Sah,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            AccelKind::Auto => "auto",
+            AccelKind::None => "none",
+            AccelKind::Median => "median",
+            AccelKind::Sah => "sah",
+        }
+    }
+}
+
+impl std::fmt::Display for AccelKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
 }
 
 impl std::str::FromStr for AccelKind {
@@ -28,8 +67,9 @@ impl std::str::FromStr for AccelKind {
             "auto" => Ok(AccelKind::Auto),
             "none" => Ok(AccelKind::None),
             "median" => Ok(AccelKind::Median),
+            "sah" => Ok(AccelKind::Sah),
             other => Err(format!(
-                "unknown accelerator '{other}' (expected auto, none or median)"
+                "unknown accelerator '{other}' (expected auto, none, median or sah)"
             )),
         }
     }
@@ -46,32 +86,56 @@ pub enum Accel {
 }
 
 impl Accel {
+    /// Builds the accelerator `kind` over `prims`; `leaf_size` is the most primitives in a BVH
+    /// leaf.
     pub fn build(prims: &[Primitive], kind: AccelKind, leaf_size: usize) -> Accel {
+        // BVH entries are u32 primitive indices, with u32::MAX reserved.
+        if prims.len() >= u32::MAX as usize {
+            return Accel::List;
+        }
         match kind {
             AccelKind::None => Accel::List,
             AccelKind::Auto if prims.len() < AUTO_MIN_PRIMITIVES => Accel::List,
-            AccelKind::Auto | AccelKind::Median => {
-                Accel::Bvh(Bvh::build_median(prims, BvhOptions { leaf_size }))
-            }
+            AccelKind::Median => Accel::Bvh(Bvh::build_median(prims, leaf_size)),
+            AccelKind::Auto | AccelKind::Sah => Accel::Bvh(Bvh::build_sah(prims, leaf_size)),
         }
     }
 
-    /// The closest hit with `0 < t < t_max`: the primitive index and its candidate.
+    /// Bytes the accelerator holds beyond the primitives (nodes and primitive order).
+    pub fn memory_bytes(&self) -> usize {
+        match self {
+            Accel::List => 0,
+            Accel::Bvh(b) => b.memory_bytes(),
+        }
+    }
+
+    /// The tree's shape, if there is one.
+    pub fn stats(&self) -> Option<BvhStats> {
+        match self {
+            Accel::List => None,
+            Accel::Bvh(b) => Some(b.stats()),
+        }
+    }
+
+    /// The closest hit with `0 < t < t_max`: the primitive index and its candidate. Among hits at
+    /// the same `t`, the least primitive index.
     #[inline]
     pub fn closest(&self, prims: &[Primitive], ray: &Ray, t_max: f32) -> Option<(u32, Candidate)> {
+        let r = PreparedRay::new(ray);
         match self {
             Accel::List => {
+                // In index order with a strict bound: the first of equal-t hits stays.
                 let mut best = None;
                 let mut t_max = t_max;
                 for (i, p) in prims.iter().enumerate() {
-                    if let Some(c) = p.shape.intersect(ray, t_max) {
+                    if let Some(c) = p.shape.intersect_prepared(&r, t_max) {
                         t_max = c.t;
                         best = Some((i as u32, c));
                     }
                 }
                 best
             }
-            Accel::Bvh(b) => b.closest(prims, ray, t_max),
+            Accel::Bvh(b) => b.closest(prims, &r, t_max),
         }
     }
 
@@ -85,12 +149,13 @@ impl Accel {
         t_max: f32,
         blocks: impl Fn(u32) -> bool,
     ) -> bool {
+        let r = PreparedRay::new(ray);
         match self {
             Accel::List => prims
                 .iter()
                 .enumerate()
-                .any(|(i, p)| blocks(i as u32) && p.shape.intersect(ray, t_max).is_some()),
-            Accel::Bvh(b) => b.any(prims, ray, t_max, blocks),
+                .any(|(i, p)| blocks(i as u32) && p.shape.intersect_prepared(&r, t_max).is_some()),
+            Accel::Bvh(b) => b.any(prims, &r, t_max, blocks),
         }
     }
 }

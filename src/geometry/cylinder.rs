@@ -24,8 +24,6 @@ pub struct Cylinder {
     pub axis: Vec3,
     pub radius: f32,
     pub half_height: f32,
-    /// `(tangent, bitangent)` completing `axis` to an orthonormal frame.
-    frame: (Vec3, Vec3),
 }
 
 impl Cylinder {
@@ -36,12 +34,20 @@ impl Cylinder {
             axis,
             radius,
             half_height,
-            frame: orthonormal_basis(axis),
         }
     }
 
-    fn to_local(&self, v: Vec3) -> Vec3 {
-        Vec3::new(v.dot(self.frame.0), v.dot(self.frame.1), v.dot(self.axis))
+    /// `(tangent, bitangent)` completing `axis` to an orthonormal frame. Recomputed on use rather
+    /// than stored: it keeps every primitive record at 52 bytes (a triangle's size), which matters
+    /// more on big meshes than the few operations it costs a cylinder test.
+    #[inline]
+    fn frame(&self) -> (Vec3, Vec3) {
+        orthonormal_basis(self.axis)
+    }
+
+    #[inline]
+    fn to_local(&self, frame: (Vec3, Vec3), v: Vec3) -> Vec3 {
+        Vec3::new(v.dot(frame.0), v.dot(frame.1), v.dot(self.axis))
     }
 
     pub fn bounds(&self) -> Aabb {
@@ -57,8 +63,9 @@ impl Cylinder {
     /// discriminant `A·r² − (o × d)_z²` and Vieta's formula for the second root.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Candidate> {
-        let o = self.to_local(ray.origin - self.center);
-        let d = self.to_local(ray.dir);
+        let frame = self.frame();
+        let o = self.to_local(frame, ray.origin - self.center);
+        let d = self.to_local(frame, ray.dir);
         let (r, h) = (self.radius, self.half_height);
         let mut best: Option<Candidate> = None;
         let mut consider = |t: f32, part: f32| {
@@ -100,13 +107,14 @@ impl Cylinder {
 
     pub fn hit(&self, ray: &Ray, c: Candidate, prim: u32) -> Hit {
         let p = ray.at(c.t);
-        let local = self.to_local(p - self.center);
+        let frame = self.frame();
+        let local = self.to_local(frame, p - self.center);
         let (r, h) = (self.radius, self.half_height);
         let (normal, point, uv);
         if c.aux[0] == SIDE {
             // Re-project onto the side surface.
             let radial = Vec2::new(local.x, local.y).normalize_or(Vec2::X);
-            normal = (radial.x * self.frame.0 + radial.y * self.frame.1).normalize();
+            normal = (radial.x * frame.0 + radial.y * frame.1).normalize();
             let z = local.z.clamp(-h, h);
             point = self.center + normal * r + self.axis * z;
             let phi = radial.y.atan2(radial.x) / std::f32::consts::TAU;
@@ -114,10 +122,7 @@ impl Cylinder {
         } else {
             let sign = if c.aux[0] == TOP { 1.0 } else { -1.0 };
             normal = self.axis * sign;
-            point = self.center
-                + local.x * self.frame.0
-                + local.y * self.frame.1
-                + self.axis * (sign * h);
+            point = self.center + local.x * frame.0 + local.y * frame.1 + self.axis * (sign * h);
             uv = Vec2::new(0.5 + 0.5 * local.x / r, 0.5 - 0.5 * local.y / r);
         }
         // The local frame costs a dot product (3 roundings) each way; bound generously.
@@ -170,7 +175,7 @@ mod tests {
             for z in [-2.0, 0.0, 2.0] {
                 let p = cy.center
                     + cy.axis * z
-                    + 0.3 * (phi.cos() * cy.frame.0 + phi.sin() * cy.frame.1);
+                    + 0.3 * (phi.cos() * cy.frame().0 + phi.sin() * cy.frame().1);
                 assert!(b.contains(p, 1e-5), "{p}");
             }
         }

@@ -16,9 +16,9 @@ pub use mesh::{Mesh, MeshUv};
 pub use sphere::Sphere;
 pub use triangle::Triangle;
 
-use crate::accel::aabb::Aabb;
+use crate::accel::aabb::{slab, Aabb};
 use crate::math::Vec3;
-use crate::ray::{Hit, Ray};
+use crate::ray::{Hit, PreparedRay, Ray};
 
 /// A candidate intersection: the ray parameter and two shape-specific values (triangle
 /// barycentrics `b1, b2`; for cylinders which part was hit).
@@ -37,14 +37,38 @@ pub enum Shape {
 }
 
 impl Shape {
-    /// The closest intersection with `0 < t < t_max`, if any.
+    /// The closest intersection with `0 < t < t_max`, if any. See
+    /// [`Shape::intersect_prepared`].
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Candidate> {
-        match self {
-            Shape::Sphere(s) => s.intersect(ray, t_max),
-            Shape::Triangle(t) => t.intersect(ray, t_max),
-            Shape::Cylinder(c) => c.intersect(ray, t_max),
-        }
+        self.intersect_prepared(&PreparedRay::new(ray), t_max)
+    }
+
+    /// The closest intersection with `0 < t < t_max` for a ray prepared once per traversal (what
+    /// the accelerators call).
+    ///
+    /// The shape's own test is followed by the accelerators' robust slab test on the shape's
+    /// bounds ([`crate::accel::aabb::slab`]): a hit is kept only if the ray passes the box, and
+    /// its `t` is raised to the box's entry distance if rounding left it below. Every box
+    /// containing the shape then passes the slab test for any bound `≥ t` (the computed entry and
+    /// exit distances are monotone in the box), so a BVH that culls boxes against the best `t`
+    /// so far can never skip a primitive that testing every primitive would report: the
+    /// accelerators agree bit for bit. The adjustment only acts where the shape's test rounded
+    /// its hit outside its own bounds (grazing rays, hits on a flat box's face), by a few ulps.
+    ///
+    /// The result depends on `t_max` only through the final `t < t_max`, so a hit found under one
+    /// bound is found, with the same bits, under any larger bound.
+    #[inline(always)]
+    pub fn intersect_prepared(&self, r: &PreparedRay, t_max: f32) -> Option<Candidate> {
+        let c = match self {
+            Shape::Triangle(t) => t.intersect_prepared(r, t_max),
+            Shape::Sphere(s) => s.intersect(&r.ray, t_max),
+            Shape::Cylinder(c) => c.intersect(&r.ray, t_max),
+        }?;
+        let b = self.bounds();
+        let (inside, entry) = slab(b.min.into(), b.max.into(), r, f32::INFINITY);
+        let t = c.t.max(entry);
+        (inside && t < t_max).then_some(Candidate { t, aux: c.aux })
     }
 
     /// Axis-aligned bounds.

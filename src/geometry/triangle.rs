@@ -8,8 +8,8 @@
 
 use super::{Candidate, Mesh};
 use crate::accel::aabb::Aabb;
-use crate::math::{gamma, max_dimension, Vec3};
-use crate::ray::{Hit, Ray};
+use crate::math::{gamma, Vec3};
+use crate::ray::{Hit, PreparedRay, Ray};
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Triangle {
@@ -38,6 +38,65 @@ fn edge_functions(p0: Vec3, p1: Vec3, p2: Vec3) -> [f32; 3] {
     }
 }
 
+/// The body of the watertight test with the axis permutation `(KX, KY, KZ)`.
+#[inline(always)]
+fn watertight<const KX: usize, const KY: usize, const KZ: usize>(
+    p: &[Vec3; 3],
+    r: &PreparedRay,
+    t_max: f32,
+) -> Option<Candidate> {
+    let o = r.ray.origin.to_array();
+    let (sx, sy, sz) = (r.shear.x, r.shear.y, r.shear.z);
+    let shear = |v: Vec3| {
+        let v = v.to_array();
+        let (x, y, z) = (v[KX] - o[KX], v[KY] - o[KY], v[KZ] - o[KZ]);
+        Vec3::new(x + sx * z, y + sy * z, z)
+    };
+    let (mut p0, mut p1, mut p2) = (shear(p[0]), shear(p[1]), shear(p[2]));
+    let [e0, e1, e2] = edge_functions(p0, p1, p2);
+    if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
+        return None;
+    }
+    let det = e0 + e1 + e2;
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    p0.z *= sz;
+    p1.z *= sz;
+    p2.z *= sz;
+    let t_scaled = e0 * p0.z + e1 * p1.z + e2 * p2.z;
+    // A hit behind the origin (t_scaled and det of opposite signs) is rejected early; the
+    // comparison with t_max is made on the final t below (see `intersect_prepared`).
+    if (det < 0.0 && t_scaled >= 0.0) || (det > 0.0 && t_scaled <= 0.0) {
+        return None;
+    }
+    let inv_det = 1.0 / det;
+    let t = t_scaled * inv_det;
+    let below = t < t_max; // false for NaN
+    if !below {
+        return None;
+    }
+    // Conservative lower bound on t (pbrt-v4 §6.8.4): reject hits that rounding could have
+    // placed on the wrong side of the origin.
+    let max_zt = p0.z.abs().max(p1.z.abs()).max(p2.z.abs());
+    let delta_z = gamma(3) * max_zt;
+    let max_xt = p0.x.abs().max(p1.x.abs()).max(p2.x.abs());
+    let max_yt = p0.y.abs().max(p1.y.abs()).max(p2.y.abs());
+    let delta_x = gamma(5) * (max_xt + max_zt);
+    let delta_y = gamma(5) * (max_yt + max_zt);
+    let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+    let max_e = e0.abs().max(e1.abs()).max(e2.abs());
+    let delta_t =
+        3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
+    if t.is_nan() || t <= delta_t {
+        return None;
+    }
+    Some(Candidate {
+        t,
+        aux: [e1 * inv_det, e2 * inv_det],
+    })
+}
+
 impl Triangle {
     pub fn bounds(&self) -> Aabb {
         Aabb::new(
@@ -54,62 +113,27 @@ impl Triangle {
     /// Degenerate (zero-area) triangles are never hit. `aux` holds the barycentrics of `p1`, `p2`.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Candidate> {
-        let d = ray.dir;
-        let kz = max_dimension(d.abs());
-        let kx = if kz == 2 { 0 } else { kz + 1 };
-        let ky = if kx == 2 { 0 } else { kx + 1 };
-        let perm = |v: Vec3| Vec3::new(v[kx], v[ky], v[kz]);
-        let d = perm(d);
-        if d.z == 0.0 || !d.z.is_finite() {
+        self.intersect_prepared(&PreparedRay::new(ray), t_max)
+    }
+
+    /// [`Triangle::intersect`] with the per-ray permutation and shear computed once per ray.
+    ///
+    /// The result depends on `t_max` only through the final comparison `t < t_max` on the
+    /// computed `t`, so a hit found under one bound is found, with the same bits, under any larger
+    /// bound: every accelerator then agrees with testing all primitives, whatever order it visits
+    /// them in.
+    #[inline(always)]
+    pub fn intersect_prepared(&self, r: &PreparedRay, t_max: f32) -> Option<Candidate> {
+        if !r.shear_ok {
             return None;
         }
-        let sx = -d.x / d.z;
-        let sy = -d.y / d.z;
-        let sz = 1.0 / d.z;
-        let shear = |p: Vec3| {
-            let p = perm(p - ray.origin);
-            Vec3::new(p.x + sx * p.z, p.y + sy * p.z, p.z)
-        };
-        let (mut p0, mut p1, mut p2) = (shear(self.p[0]), shear(self.p[1]), shear(self.p[2]));
-        let [e0, e1, e2] = edge_functions(p0, p1, p2);
-        if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
-            return None;
+        // The permutation is a per-ray constant: one predictable branch selects a copy of the test
+        // with the axes fixed at compile time.
+        match r.kz {
+            0 => watertight::<1, 2, 0>(&self.p, r, t_max),
+            1 => watertight::<2, 0, 1>(&self.p, r, t_max),
+            _ => watertight::<0, 1, 2>(&self.p, r, t_max),
         }
-        let det = e0 + e1 + e2;
-        if det == 0.0 || !det.is_finite() {
-            return None;
-        }
-        p0.z *= sz;
-        p1.z *= sz;
-        p2.z *= sz;
-        let t_scaled = e0 * p0.z + e1 * p1.z + e2 * p2.z;
-        if det < 0.0 && (t_scaled >= 0.0 || t_scaled < t_max * det) {
-            return None;
-        }
-        if det > 0.0 && (t_scaled <= 0.0 || t_scaled > t_max * det) {
-            return None;
-        }
-        let inv_det = 1.0 / det;
-        let t = t_scaled * inv_det;
-        // Conservative lower bound on t (pbrt-v4 §6.8.4): reject hits that rounding could have
-        // placed on the wrong side of the origin.
-        let max_zt = p0.z.abs().max(p1.z.abs()).max(p2.z.abs());
-        let delta_z = gamma(3) * max_zt;
-        let max_xt = p0.x.abs().max(p1.x.abs()).max(p2.x.abs());
-        let max_yt = p0.y.abs().max(p1.y.abs()).max(p2.y.abs());
-        let delta_x = gamma(5) * (max_xt + max_zt);
-        let delta_y = gamma(5) * (max_yt + max_zt);
-        let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
-        let max_e = e0.abs().max(e1.abs()).max(e2.abs());
-        let delta_t =
-            3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
-        if t.is_nan() || t <= delta_t {
-            return None;
-        }
-        Some(Candidate {
-            t,
-            aux: [e1 * inv_det, e2 * inv_det],
-        })
     }
 
     pub fn hit(&self, c: Candidate, prim: u32, mesh: &Mesh) -> Hit {

@@ -1,0 +1,453 @@
+//! Differential test of the accelerators: every BVH builder (median, SAH, at several leaf sizes,
+//! and `auto`) must give exactly the answers of testing every primitive (`Accel::List`): the same
+//! closest primitive with bit-identical `t` and barycentrics, and the same any-hit answer, on
+//! random, grazing, axis-parallel and edge-aimed rays, over meshes and mixed scenes, including
+//! empty scenes, single primitives, degenerate triangles and duplicated primitives (where the
+//! lower primitive index wins a tie in `t`).
+
+use raytracer::accel::{Accel, AccelKind, Bvh};
+use raytracer::geometry::{Candidate, Cylinder, Primitive, Shape, Sphere, Triangle};
+use raytracer::math::{next_float_up, Vec3};
+use raytracer::ray::Ray;
+use raytracer::sampling::{hash, to_unit, uniform_sphere};
+
+/// Deterministic uniform numbers in [0, 1).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f32 {
+        self.0 += 1;
+        to_unit(hash(&[self.0, 0xacce1]))
+    }
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.next()
+    }
+    fn index(&mut self, n: usize) -> usize {
+        ((self.next() * n as f32) as usize).min(n.saturating_sub(1))
+    }
+    fn vec(&mut self, lo: Vec3, hi: Vec3) -> Vec3 {
+        Vec3::new(
+            self.range(lo.x, hi.x),
+            self.range(lo.y, hi.y),
+            self.range(lo.z, hi.z),
+        )
+    }
+    fn dir(&mut self) -> Vec3 {
+        uniform_sphere(raytracer::math::Vec2::new(self.next(), self.next()))
+    }
+}
+
+fn tri(a: Vec3, b: Vec3, c: Vec3) -> Primitive {
+    Primitive {
+        shape: Shape::Triangle(Triangle {
+            p: [a, b, c],
+            mesh: 0,
+            face: 0,
+        }),
+        material: 0,
+    }
+}
+
+fn sphere(c: Vec3, r: f32) -> Primitive {
+    Primitive {
+        shape: Shape::Sphere(Sphere::new(c, r, Vec3::Y, Vec3::X)),
+        material: 0,
+    }
+}
+
+fn cylinder(c: Vec3, axis: Vec3, r: f32, h: f32) -> Primitive {
+    Primitive {
+        shape: Shape::Cylinder(Cylinder::new(c, axis, r, h)),
+        material: 0,
+    }
+}
+
+/// Spheres, cylinders and triangles at random, with degenerate triangles (a line, a point, a
+/// repeated vertex), axis-aligned triangles sharing planes, and exact duplicates of earlier
+/// primitives placed after them.
+fn mixed_scene(n: usize, seed: u64) -> Vec<Primitive> {
+    let mut rng = Rng(seed << 32);
+    let mut prims = Vec::new();
+    let (lo, hi) = (Vec3::splat(-4.0), Vec3::splat(4.0));
+    for i in 0..n {
+        let c = rng.vec(lo, hi);
+        prims.push(match i % 7 {
+            0 => sphere(c, rng.range(0.05, 0.8)),
+            1 => cylinder(c, rng.dir(), rng.range(0.05, 0.5), rng.range(0.05, 0.7)),
+            // Degenerate: collinear corners, one point, a repeated corner.
+            2 => {
+                let d = rng.dir();
+                tri(c, c + d, c + 2.0 * d)
+            }
+            3 if i % 2 == 1 => tri(c, c, c),
+            3 => tri(c, c, c + rng.dir()),
+            // Axis-aligned, on a few shared planes (grazing and slab-plane cases).
+            4 => {
+                let y = (rng.index(5) as f32) - 2.0;
+                let a = Vec3::new(c.x, y, c.z);
+                tri(
+                    a,
+                    a + Vec3::new(rng.range(0.1, 1.5), 0.0, 0.0),
+                    a + Vec3::new(0.0, 0.0, rng.range(0.1, 1.5)),
+                )
+            }
+            _ => tri(c, c + rng.dir() * 1.2, c + rng.dir() * 1.2),
+        });
+    }
+    // Duplicates of earlier primitives (the earlier, lower index must win every tie).
+    for k in 0..n / 5 {
+        let p = prims[(k * 37) % n].clone();
+        prims.push(p);
+    }
+    prims
+}
+
+/// A `g×g` grid of UV spheres of `s×s` quads (two triangles each, degenerate at the poles) on a
+/// ground quad: the benchmark scene's layout, small.
+fn mesh_scene(g: u32, s: u32) -> Vec<Primitive> {
+    let gf = g as f32;
+    let ground = [
+        Vec3::new(-gf, 0.0, -gf),
+        Vec3::new(gf, 0.0, -gf),
+        Vec3::new(gf, 0.0, gf),
+        Vec3::new(-gf, 0.0, gf),
+    ];
+    let mut prims = vec![
+        tri(ground[0], ground[1], ground[2]),
+        tri(ground[0], ground[2], ground[3]),
+    ];
+    let point = |c: Vec3, a: u32, b: u32| {
+        let theta = std::f32::consts::PI * a as f32 / s as f32;
+        let phi = std::f32::consts::TAU * b as f32 / s as f32;
+        c + 0.45
+            * Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                theta.sin() * phi.sin(),
+            )
+    };
+    for i in 0..g {
+        for j in 0..g {
+            let c = Vec3::new(i as f32 - gf / 2.0 + 0.5, 0.45, j as f32 - gf / 2.0 + 0.5);
+            for a in 0..s {
+                for b in 0..s {
+                    let (p00, p10) = (point(c, a, b), point(c, a + 1, b));
+                    let (p11, p01) = (point(c, a + 1, b + 1), point(c, a, b + 1));
+                    prims.push(tri(p00, p10, p11));
+                    prims.push(tri(p00, p11, p01));
+                }
+            }
+        }
+    }
+    prims
+}
+
+fn triangles(prims: &[Primitive]) -> Vec<[Vec3; 3]> {
+    prims
+        .iter()
+        .filter_map(|p| match &p.shape {
+            Shape::Triangle(t) => Some(t.p),
+            _ => None,
+        })
+        .collect()
+}
+
+fn bounds(prims: &[Primitive]) -> (Vec3, Vec3) {
+    prims
+        .iter()
+        .fold((Vec3::splat(-1.0), Vec3::splat(1.0)), |(lo, hi), p| {
+            let b = p.shape.bounds();
+            (lo.min(b.min), hi.max(b.max))
+        })
+}
+
+/// Rays of every kind for a scene.
+fn rays(prims: &[Primitive], count: usize, seed: u64) -> Vec<Ray> {
+    let mut rng = Rng(seed << 40);
+    let tris = triangles(prims);
+    let (lo, hi) = bounds(prims);
+    let (lo, hi) = (lo - 0.25 * (hi - lo), hi + 0.25 * (hi - lo));
+    let axes = [Vec3::X, Vec3::Y, Vec3::Z];
+    let mut out = Vec::with_capacity(count);
+    while out.len() < count {
+        let kind = out.len() % 6;
+        let ray = match kind {
+            // Random origin and direction.
+            0 => Ray::new(rng.vec(lo, hi), rng.dir()),
+            // Aimed at a triangle's corner, edge or inside (watertightness, shared edges).
+            1 if !tris.is_empty() => {
+                let t = tris[rng.index(tris.len())];
+                let target = match rng.index(4) {
+                    0 => t[rng.index(3)],
+                    1 => {
+                        let i = rng.index(3);
+                        0.5 * (t[i] + t[(i + 1) % 3])
+                    }
+                    _ => {
+                        let (u, v) = (rng.next(), rng.next());
+                        t[0] + u * (t[1] - t[0]) + v * (1.0 - u) * (t[2] - t[0])
+                    }
+                };
+                let o = rng.vec(lo, hi);
+                Ray::new(o, (target - o).normalize_or(Vec3::X))
+            }
+            // Grazing: the origin on (or next to) a triangle's plane, the direction in the plane
+            // but for a tiny (or zero) normal component.
+            2 if !tris.is_empty() => {
+                let t = tris[rng.index(tris.len())];
+                let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+                let n = e1.cross(e2).normalize_or(Vec3::Y);
+                let (u, v) = (rng.range(-0.5, 1.5), rng.range(-0.5, 1.5));
+                let o = t[0] + u * e1 + v * e2;
+                let in_plane = (rng.range(-1.0, 1.0) * e1 + rng.range(-1.0, 1.0) * e2)
+                    .normalize_or(e1.normalize_or(Vec3::X));
+                let tilt = [0.0, 1e-7, -1e-7, 1e-4, -1e-3][rng.index(5)];
+                let back = in_plane * rng.range(0.0, 3.0);
+                Ray::new(o - back, (in_plane + tilt * n).normalize_or(in_plane))
+            }
+            // Axis-parallel: direction components exactly ±0, origins on vertex coordinates (so
+            // rays run in slab planes and triangle planes).
+            3 => {
+                let a = axes[rng.index(3)];
+                let sign = if rng.next() < 0.5 { -1.0 } else { 1.0 };
+                let mut d = sign * a;
+                // Zero components of either sign.
+                for k in 0..3 {
+                    if d[k] == 0.0 && rng.next() < 0.5 {
+                        d[k] = -0.0;
+                    }
+                }
+                let mut o = rng.vec(lo, hi);
+                if !tris.is_empty() {
+                    let v = tris[rng.index(tris.len())][rng.index(3)];
+                    for k in 0..3 {
+                        if a[k] == 0.0 && rng.next() < 0.7 {
+                            o[k] = v[k];
+                        }
+                    }
+                }
+                Ray::new(o, d)
+            }
+            // Two axes: a diagonal in a coordinate plane, from a vertex's plane.
+            4 => {
+                let zero = rng.index(3);
+                let mut d = rng.dir();
+                d[zero] = if rng.next() < 0.5 { 0.0 } else { -0.0 };
+                let mut o = rng.vec(lo, hi);
+                if !tris.is_empty() {
+                    o[zero] = tris[rng.index(tris.len())][rng.index(3)][zero];
+                }
+                Ray::new(o, d.normalize_or(Vec3::X))
+            }
+            // From inside the scene in a random direction, short or long.
+            _ => Ray::new(rng.vec(lo, hi) * 0.5, rng.dir() * rng.range(0.5, 3.0)),
+        };
+        out.push(ray);
+    }
+    out
+}
+
+type Closest = Option<(u32, u32, [u32; 2])>;
+
+fn key(h: Option<(u32, Candidate)>) -> Closest {
+    h.map(|(p, c)| (p, c.t.to_bits(), c.aux.map(f32::to_bits)))
+}
+
+/// Every accelerator under test for `prims`.
+fn accelerators(prims: &[Primitive]) -> Vec<(String, Accel)> {
+    let mut v = vec![
+        ("auto".to_string(), Accel::build(prims, AccelKind::Auto, 4)),
+        (
+            "median".to_string(),
+            Accel::build(prims, AccelKind::Median, 4),
+        ),
+        ("sah".to_string(), Accel::build(prims, AccelKind::Sah, 4)),
+    ];
+    for leaf in [1, 2, 8] {
+        v.push((
+            format!("median leaf {leaf}"),
+            Accel::Bvh(Bvh::build_median(prims, leaf)),
+        ));
+        v.push((
+            format!("sah leaf {leaf}"),
+            Accel::Bvh(Bvh::build_sah(prims, leaf)),
+        ));
+    }
+    v
+}
+
+/// Checks every accelerator against the list on `rays` with several `t_max`; returns the number
+/// of rays.
+fn check_scene(name: &str, prims: &[Primitive], rays: &[Ray]) -> usize {
+    let list = Accel::List;
+    let accels = accelerators(prims);
+    let blocks_some = |p: u32| p % 3 != 1;
+    let mut queries = 0;
+    let mut hits = 0;
+    for (i, ray) in rays.iter().enumerate() {
+        let first = list.closest(prims, ray, f32::INFINITY);
+        hits += first.is_some() as usize;
+        let mut limits = vec![f32::INFINITY, 0.5 + 4.0 * (i % 7) as f32];
+        if let Some((_, c)) = first {
+            // Exactly at the hit (excluded: t < t_max) and just past it (included).
+            limits.push(c.t);
+            limits.push(next_float_up(c.t));
+        }
+        for &t_max in &limits {
+            queries += 1;
+            let want = key(list.closest(prims, ray, t_max));
+            let want_any = list.any(prims, ray, t_max, |_| true);
+            let want_some = list.any(prims, ray, t_max, blocks_some);
+            assert_eq!(
+                want_any,
+                want.is_some(),
+                "{name}: list any/closest disagree"
+            );
+            for (accel_name, accel) in &accels {
+                let got = key(accel.closest(prims, ray, t_max));
+                assert_eq!(
+                    got, want,
+                    "{name}, {accel_name}: closest differs for ray {i} {ray:?} t_max {t_max}"
+                );
+                assert_eq!(
+                    accel.any(prims, ray, t_max, |_| true),
+                    want_any,
+                    "{name}, {accel_name}: any differs for ray {i} {ray:?} t_max {t_max}"
+                );
+                assert_eq!(
+                    accel.any(prims, ray, t_max, blocks_some),
+                    want_some,
+                    "{name}, {accel_name}: filtered any differs for ray {i} {ray:?}"
+                );
+            }
+        }
+    }
+    let hittable = prims.iter().any(|p| match &p.shape {
+        Shape::Triangle(t) => (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]) != Vec3::ZERO,
+        _ => true,
+    });
+    assert_eq!(
+        hits > 0,
+        hittable,
+        "{name}: {hits} of {queries} queries hit"
+    );
+    rays.len()
+}
+
+#[test]
+fn every_builder_matches_brute_force() {
+    let mut total = 0;
+    // A small mesh (many shared edges and vertices, degenerate pole triangles) and a mixed scene
+    // with degenerate and duplicated primitives.
+    let mesh = mesh_scene(2, 8);
+    assert_eq!(mesh.len(), 514);
+    total += check_scene("sphere grid", &mesh, &rays(&mesh, 40_000, 1));
+    let mixed = mixed_scene(200, 2);
+    total += check_scene("mixed", &mixed, &rays(&mixed, 40_000, 2));
+    let mixed_small = mixed_scene(20, 3);
+    total += check_scene("mixed small", &mixed_small, &rays(&mixed_small, 8_000, 3));
+    // Few primitives: nothing, one of each kind, two coincident.
+    let empty: Vec<Primitive> = Vec::new();
+    total += check_scene("empty", &empty, &rays(&empty, 1_000, 4));
+    let one_tri = vec![tri(Vec3::ZERO, Vec3::X, Vec3::Y)];
+    total += check_scene("one triangle", &one_tri, &rays(&one_tri, 4_000, 5));
+    let one_sphere = vec![sphere(Vec3::ONE, 0.5)];
+    total += check_scene("one sphere", &one_sphere, &rays(&one_sphere, 1_000, 6));
+    let one_cyl = vec![cylinder(Vec3::ZERO, Vec3::Z, 0.5, 1.0)];
+    total += check_scene("one cylinder", &one_cyl, &rays(&one_cyl, 1_000, 7));
+    let twins = vec![
+        tri(Vec3::ZERO, Vec3::X, Vec3::Y),
+        tri(Vec3::ZERO, Vec3::X, Vec3::Y),
+    ];
+    total += check_scene("two coincident", &twins, &rays(&twins, 4_000, 8));
+    let points = vec![tri(Vec3::ONE, Vec3::ONE, Vec3::ONE); 9];
+    total += check_scene("degenerate only", &points, &rays(&points, 1_000, 9));
+    assert!(total >= 100_000, "only {total} rays");
+}
+
+#[test]
+fn larger_mesh_matches_brute_force() {
+    // The size of the smallest benchmark grid: deeper trees; fewer rays, as the list is slow here.
+    let mesh = mesh_scene(4, 16);
+    assert_eq!(mesh.len(), 8_194);
+    check_scene("grid 4x16", &mesh, &rays(&mesh, 1_500, 10));
+}
+
+#[test]
+fn ties_go_to_the_lowest_index_in_every_accelerator() {
+    // Copies of one triangle at indices 3, 7 and 40, among other geometry far away; another
+    // triangle sharing the copies' plane and an edge.
+    let a = Vec3::new(0.0, 0.0, 5.0);
+    let b = Vec3::new(2.0, 0.0, 5.0);
+    let c = Vec3::new(0.0, 2.0, 5.0);
+    let mut prims = mixed_scene(60, 11)
+        .into_iter()
+        .map(|p| match p.shape {
+            // Move the random geometry out of the way.
+            Shape::Sphere(s) => sphere(s.center + Vec3::splat(50.0), s.radius),
+            _ => tri(
+                Vec3::splat(50.0),
+                Vec3::new(51.0, 50.0, 50.0),
+                Vec3::splat(51.0),
+            ),
+        })
+        .collect::<Vec<_>>();
+    for i in [3, 7, 40] {
+        prims[i] = tri(a, b, c);
+    }
+    prims[20] = tri(b, Vec3::new(2.0, 2.0, 5.0), c);
+    let ray = Ray::new(Vec3::new(0.5, 0.5, 0.0), Vec3::Z);
+    for (name, accel) in accelerators(&prims) {
+        let (p, c) = accel.closest(&prims, &ray, f32::INFINITY).expect("hit");
+        assert_eq!((p, c.t), (3, 5.0), "{name}");
+        // With t_max at the hit, nothing; just past it, the same.
+        assert!(accel.closest(&prims, &ray, 5.0).is_none(), "{name}");
+        assert_eq!(
+            accel.closest(&prims, &ray, next_float_up(5.0)).map(|h| h.0),
+            Some(3),
+            "{name}"
+        );
+        // Filtering out index 3 leaves 7 as the lowest blocker.
+        assert!(accel.any(&prims, &ray, f32::INFINITY, |p| p == 7), "{name}");
+        assert!(!accel.any(&prims, &ray, 5.0, |_| true), "{name}");
+    }
+    // Through the shared edge of two triangles in one plane: the watertight test hits at least
+    // one; with equal t the lower index wins.
+    let ray = Ray::new(Vec3::new(1.0, 1.0, 0.0), Vec3::Z);
+    let want = Accel::List
+        .closest(&prims, &ray, f32::INFINITY)
+        .map(|h| h.0);
+    assert_eq!(want, Some(3));
+    for (name, accel) in accelerators(&prims) {
+        assert_eq!(
+            accel.closest(&prims, &ray, f32::INFINITY).map(|h| h.0),
+            want,
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn nan_and_zero_directions_hit_nothing() {
+    let prims = mixed_scene(50, 12);
+    for d in [
+        Vec3::ZERO,
+        Vec3::new(f32::NAN, 0.0, 1.0),
+        Vec3::splat(f32::NAN),
+        Vec3::new(0.0, f32::INFINITY, 0.0),
+    ] {
+        let ray = Ray::new(Vec3::ZERO, d);
+        for (name, accel) in accelerators(&prims) {
+            assert_eq!(
+                key(accel.closest(&prims, &ray, f32::INFINITY)),
+                key(Accel::List.closest(&prims, &ray, f32::INFINITY)),
+                "{name} {d}"
+            );
+            assert_eq!(
+                accel.any(&prims, &ray, f32::INFINITY, |_| true),
+                Accel::List.any(&prims, &ray, f32::INFINITY, |_| true),
+                "{name} {d}"
+            );
+        }
+    }
+}
