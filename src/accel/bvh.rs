@@ -129,6 +129,36 @@ struct NodeRef {
     count: u32,
 }
 
+/// The closest hit so far.
+struct Best {
+    /// Its `t` (the query's `t_max` before any hit).
+    t: f32,
+    /// Its primitive, or [`Best::NONE`].
+    index: u32,
+    candidate: Candidate,
+}
+
+impl Best {
+    const NONE: u32 = u32::MAX;
+
+    #[inline(always)]
+    fn new(t_max: f32) -> Best {
+        Best {
+            t: t_max,
+            index: Best::NONE,
+            candidate: Candidate {
+                t: t_max,
+                aux: [0.0; 2],
+            },
+        }
+    }
+
+    #[inline(always)]
+    fn hit(&self) -> Option<(u32, Candidate)> {
+        (self.index != Best::NONE).then_some((self.index, self.candidate))
+    }
+}
+
 /// The per-ray constants of the two-box test [`Bvh::pair_hit`].
 struct PairRay {
     origin: [Vec4; 3],
@@ -584,6 +614,48 @@ impl Bvh {
         s
     }
 
+    /// Tests the primitives of leaf `n` for a closer hit than `best`. A tie in `t` goes to the
+    /// lower index: such a primitive may also hit at exactly `best.t`, so its bound is the next
+    /// float up.
+    #[inline(always)]
+    fn leaf_closest(&self, prims: &[Primitive], r: &PreparedRay, n: NodeRef, best: &mut Best) {
+        let start = n.index as usize;
+        for &p in &self.order[start..start + n.count as usize] {
+            let bound = if p < best.index && best.index != Best::NONE {
+                next_float_up(best.t)
+            } else {
+                best.t
+            };
+            if let Some(c) = prims[p as usize].shape.intersect_prepared(r, bound) {
+                best.t = c.t;
+                best.index = p;
+                best.candidate = c;
+            }
+        }
+    }
+
+    /// Whether a primitive of leaf `n` accepted by `blocks` is hit before `t_max`.
+    #[inline(always)]
+    fn leaf_any(
+        &self,
+        prims: &[Primitive],
+        r: &PreparedRay,
+        n: NodeRef,
+        t_max: f32,
+        blocks: &impl Fn(u32) -> bool,
+    ) -> bool {
+        let start = n.index as usize;
+        self.order[start..start + n.count as usize]
+            .iter()
+            .any(|&p| {
+                blocks(p)
+                    && prims[p as usize]
+                        .shape
+                        .intersect_prepared(r, t_max)
+                        .is_some()
+            })
+    }
+
     /// The closest hit with `0 < t < t_max` (least `t`, then least primitive index), visiting the
     /// nearer child first and skipping subtrees that start beyond the best hit so far.
     pub fn closest(
@@ -592,6 +664,15 @@ impl Bvh {
         r: &PreparedRay,
         t_max: f32,
     ) -> Option<(u32, Candidate)> {
+        let (lo, hi, root) = self.root?;
+        if root.count > 0 {
+            // A single leaf: no traversal.
+            let mut best = Best::new(t_max);
+            if slab(lo, hi, r, t_max).0 {
+                self.leaf_closest(prims, r, root, &mut best);
+            }
+            return best.hit();
+        }
         // One copy of the loop per octant of the direction, so the slab test's lane swaps are
         // fixed at compile time.
         match r.negative.bitmask() {
@@ -617,13 +698,7 @@ impl Bvh {
             return None;
         }
         let pr = PairRay::new(r);
-        const NONE: u32 = u32::MAX;
-        let mut best_t = t_max;
-        let mut best_p = NONE;
-        let mut best = Candidate {
-            t: t_max,
-            aux: [0.0; 2],
-        };
+        let mut best = Best::new(t_max);
         // Entries: node identifier and entry distance.
         let mut stack = [(0u32, 0.0f32); STACK_SIZE];
         let mut top = 0usize;
@@ -632,7 +707,7 @@ impl Bvh {
             if n.count == 0 {
                 let k = n.index;
                 let pair = &self.pairs[k as usize];
-                let (hits, near0, near1) = Self::pair_hit::<NX, NY, NZ>(pair, &pr, best_t);
+                let (hits, near0, near1) = Self::pair_hit::<NX, NY, NZ>(pair, &pr, best.t);
                 let c0 = NodeRef {
                     index: pair.meta[0],
                     count: pair.meta[2],
@@ -659,31 +734,17 @@ impl Bvh {
                     continue;
                 }
             } else {
-                let start = n.index as usize;
-                for &p in &self.order[start..start + n.count as usize] {
-                    // A tie in t goes to the lower index: such a primitive may also hit at
-                    // exactly best_t, so its bound is the next float up.
-                    let bound = if p < best_p && best_p != NONE {
-                        next_float_up(best_t)
-                    } else {
-                        best_t
-                    };
-                    if let Some(c) = prims[p as usize].shape.intersect_prepared(r, bound) {
-                        best_t = c.t;
-                        best_p = p;
-                        best = c;
-                    }
-                }
+                self.leaf_closest(prims, r, n, &mut best);
             }
             // Next subtree from the stack whose entry is not beyond the best hit: the same answer
             // the box test would give now, as its exit side passed when it was pushed.
             loop {
                 if top == 0 {
-                    return (best_p != NONE).then_some((best_p, best));
+                    return best.hit();
                 }
                 top -= 1;
                 let (id, near) = stack[top];
-                if near <= best_t {
+                if near <= best.t {
                     n = self.node(id);
                     break;
                 }
@@ -700,6 +761,12 @@ impl Bvh {
         t_max: f32,
         blocks: impl Fn(u32) -> bool,
     ) -> bool {
+        let Some((lo, hi, root)) = self.root else {
+            return false;
+        };
+        if root.count > 0 {
+            return slab(lo, hi, r, t_max).0 && self.leaf_any(prims, r, root, t_max, &blocks);
+        }
         match r.negative.bitmask() {
             0 => self.any_in::<false, false, false>(prims, r, t_max, blocks),
             1 => self.any_in::<true, false, false>(prims, r, t_max, blocks),
@@ -759,18 +826,8 @@ impl Bvh {
                     n = c1;
                     continue;
                 }
-            } else {
-                let start = n.index as usize;
-                for &p in &self.order[start..start + n.count as usize] {
-                    if blocks(p)
-                        && prims[p as usize]
-                            .shape
-                            .intersect_prepared(r, t_max)
-                            .is_some()
-                    {
-                        return true;
-                    }
-                }
+            } else if self.leaf_any(prims, r, n, t_max, &blocks) {
+                return true;
             }
             if top == 0 {
                 return false;
