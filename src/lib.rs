@@ -4,6 +4,7 @@
 //! [`image_io`]. See `docs/ARCHITECTURE.md`.
 
 pub mod accel;
+pub mod bench;
 pub mod camera;
 pub mod film;
 pub mod geometry;

@@ -62,7 +62,15 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> RenderOutput {
     let start = Instant::now();
     let accel = Accel::build(&scene.primitives, options.accel, options.leaf_size);
     let build_time = start.elapsed();
+    RenderOutput {
+        build_time,
+        ..render_with_accel(scene, &accel, options)
+    }
+}
 
+/// Renders `scene` with an accelerator already built over its primitives (`options.accel` and
+/// `options.leaf_size` are not used; `build_time` is zero).
+pub fn render_with_accel(scene: &Scene, accel: &Accel, options: &RenderOptions) -> RenderOutput {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let tiles_x = w.div_ceil(TILE);
     let tiles_y = h.div_ceil(TILE);
@@ -86,7 +94,7 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> RenderOutput {
     let results: Vec<(Vec<Vec3>, RayCounts)> = tiles
         .par_iter()
         .map(|&(tx, ty)| {
-            let out = render_tile(scene, &accel, options, tx * TILE, ty * TILE);
+            let out = render_tile(scene, accel, options, tx * TILE, ty * TILE);
             bar.inc(1);
             out
         })
@@ -107,7 +115,7 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> RenderOutput {
     RenderOutput {
         film,
         counts,
-        build_time,
+        build_time: Duration::ZERO,
         render_time: start.elapsed(),
     }
 }

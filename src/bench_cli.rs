@@ -1,0 +1,277 @@
+//! `raytracer bench`: the command line of the benchmarks in [`raytracer::bench`].
+
+use std::ffi::OsString;
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Duration;
+
+use clap::Parser;
+
+use raytracer::accel::bvh::STACK_SIZE;
+use raytracer::bench::{
+    crossover, default_scenes_dir, format_csv, format_table, row_fields, sphere_grid_triangles,
+    table1, throughput, TableOptions, Throughput, TABLE_HEADER,
+};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "raytracer bench",
+    about = "Benchmarks. Without options: \"Table 1\", six scenes (the bundled example and demo, \
+             sphere grids from 8k to 1.2M triangles) with point and area lights, rendered with \
+             every --accel mode.",
+    after_help = "Timings are medians of --runs runs. Rows with --accel none whose renders are \
+                  estimated (from a short sample) to take longer than --none-limit seconds in all \
+                  are skipped and show the estimate."
+)]
+struct BenchCli {
+    /// Smoke run: small scenes and images, one run each (a few seconds).
+    #[arg(long)]
+    quick: bool,
+    /// Runs per measurement; medians are reported.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    runs: u32,
+    /// Also write the table as CSV to this file.
+    #[arg(long)]
+    csv: Option<PathBuf>,
+    /// Ray throughput on the sphere grids (G=4,S=16 and G=16,S=32): build time, and primary,
+    /// shadow and incoherent rays on one thread and on all.
+    #[arg(long, conflicts_with = "crossover")]
+    rays: bool,
+    /// With --rays: also the 8,388,610-triangle grid (G=32, S=64), once (needs about 2 GB).
+    #[arg(long, requires = "rays")]
+    huge: bool,
+    /// Measure where a BVH starts to pay: none against sah on scenes of 1 to 64 primitives.
+    #[arg(long)]
+    crossover: bool,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    threads: Option<u32>,
+    /// Most primitives per BVH leaf.
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u64).range(1..=255))]
+    leaf_size: u64,
+    /// Folder holding example.json and demo.json (default: ./scenes, else the source tree's).
+    #[arg(long)]
+    scenes: Option<PathBuf>,
+    /// Skip `none` rows estimated to take longer than this many seconds (at most 1 with --quick).
+    #[arg(long, default_value_t = 60.0)]
+    none_limit: f64,
+}
+
+pub fn main(args: &[OsString]) -> ExitCode {
+    let cli = match BenchCli::try_parse_from(args) {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    if !(cli.none_limit >= 0.0 && cli.none_limit.is_finite()) {
+        eprintln!("error: --none-limit must be a finite number of seconds, at least 0");
+        return ExitCode::from(2);
+    }
+    let pool = match rayon::ThreadPoolBuilder::new()
+        .num_threads(cli.threads.unwrap_or(0) as usize)
+        .build()
+    {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: cannot start worker threads: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    match pool.install(|| run(&cli)) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn run(cli: &BenchCli) -> Result<(), String> {
+    let threads = rayon::current_num_threads();
+    let runs = if cli.quick { 1 } else { cli.runs as usize };
+    let leaf_size = cli.leaf_size as usize;
+    let (header, rows): (Vec<&str>, Vec<Vec<String>>) = if cli.crossover {
+        println!(
+            "auto crossover: ray queries (primary 320x240, shadow, incoherent) on one thread, \
+             median of {runs}; sparse = objects in space, backdrop = a quad behind them fills \
+             the view"
+        );
+        let sizes: &[usize] = if cli.quick {
+            &[1, 8, 32]
+        } else {
+            &[1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 16, 24, 32, 48, 64]
+        };
+        let header = vec!["prims", "scene", "none_ms", "sah_ms", "sah/none"];
+        let mut rows = Vec::new();
+        for (backdrop, name) in [(false, "sparse"), (true, "backdrop")] {
+            for (n, none, sah) in crossover(sizes, backdrop, runs, leaf_size) {
+                rows.push(vec![
+                    n.to_string(),
+                    name.to_string(),
+                    format!("{:.3}", ms(none)),
+                    format!("{:.3}", ms(sah)),
+                    format!("{:.2}", sah.as_secs_f64() / none.as_secs_f64().max(1e-12)),
+                ]);
+            }
+        }
+        (header, rows)
+    } else if cli.rays {
+        let mut grids: Vec<(u32, u32, usize)> = if cli.quick {
+            vec![(2, 8, 1)]
+        } else {
+            vec![(4, 16, runs), (16, 32, runs)]
+        };
+        if cli.huge {
+            grids.push((32, 64, 1));
+        }
+        println!(
+            "ray throughput: sphere grids at 640x480, leaf size {leaf_size}, {threads} thread(s), \
+             medians of {runs} (the G=32 grid: one run)"
+        );
+        let mut rows = Vec::new();
+        for (g, s, n) in grids {
+            eprintln!(
+                "grid G={g} S={s}: {} triangles…",
+                sphere_grid_triangles(g, s)
+            );
+            let t = throughput(g, s, n, leaf_size);
+            print_throughput(&t, threads);
+            rows.extend(throughput_rows(&t, threads));
+        }
+        (THROUGHPUT_HEADER.to_vec(), rows)
+    } else {
+        let options = TableOptions {
+            quick: cli.quick,
+            runs,
+            scenes_dir: cli.scenes.clone().unwrap_or_else(default_scenes_dir),
+            leaf_size,
+            // A smoke run skips anything slow.
+            none_limit: Duration::from_secs_f64(if cli.quick {
+                cli.none_limit.min(1.0)
+            } else {
+                cli.none_limit
+            }),
+            estimate_budget: Duration::from_millis(if cli.quick { 50 } else { 500 }),
+        };
+        println!(
+            "Table 1: 1 spp, {threads} thread(s), leaf size {leaf_size}, medians of {runs} run(s); \
+             memory = accelerator + primitive records ({} B each)",
+            std::mem::size_of::<raytracer::geometry::Primitive>()
+        );
+        let rows = table1(&options, |r| {
+            eprintln!("  {}", row_fields(r).join(" "));
+        })?;
+        (
+            TABLE_HEADER.to_vec(),
+            rows.iter().map(|r| row_fields(r).to_vec()).collect(),
+        )
+    };
+    print!("{}", format_table(&header, &rows));
+    std::io::stdout().flush().map_err(|e| e.to_string())?;
+    if let Some(path) = &cli.csv {
+        std::fs::write(path, format_csv(&header, &rows))
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    }
+    Ok(())
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+const THROUGHPUT_HEADER: [&str; 12] = [
+    "grid",
+    "tris",
+    "sah_build_ms",
+    "median_build_ms",
+    "bytes_per_tri",
+    "set",
+    "rays",
+    "hits",
+    "mrays_1t",
+    "mrays_nt",
+    "speedup",
+    "threads",
+];
+
+fn throughput_rows(t: &Throughput, threads: usize) -> Vec<Vec<String>> {
+    let grid = format!("G{}S{}", t.g, t.s);
+    let head = vec![
+        grid,
+        t.triangles.to_string(),
+        format!("{:.1}", ms(t.build)),
+        format!("{:.1}", ms(t.build_median_split)),
+        format!(
+            "{:.1}",
+            (t.accel_bytes + t.primitive_bytes) as f64 / t.triangles as f64
+        ),
+    ];
+    let mut rows: Vec<Vec<String>> = t
+        .sets
+        .iter()
+        .map(|s| {
+            let mut row = head.clone();
+            row.extend([
+                s.kind.name().to_string(),
+                s.rays.to_string(),
+                s.hits.to_string(),
+                format!("{:.2}", s.mrays(s.single)),
+                format!("{:.2}", s.mrays(s.parallel)),
+                format!(
+                    "{:.2}",
+                    s.single.as_secs_f64() / s.parallel.as_secs_f64().max(1e-12)
+                ),
+                threads.to_string(),
+            ]);
+            row
+        })
+        .collect();
+    let mrays = |d: Duration| t.render_rays as f64 / d.as_secs_f64().max(1e-9) / 1e6;
+    let mut row = head;
+    row.extend([
+        "render".into(),
+        t.render_rays.to_string(),
+        String::new(),
+        format!("{:.2}", mrays(t.render_single)),
+        format!("{:.2}", mrays(t.render_parallel)),
+        format!(
+            "{:.2}",
+            t.render_single.as_secs_f64() / t.render_parallel.as_secs_f64().max(1e-12)
+        ),
+        threads.to_string(),
+    ]);
+    rows.push(row);
+    rows
+}
+
+fn print_throughput(t: &Throughput, threads: usize) {
+    let tris = t.triangles as f64;
+    println!(
+        "  G={} S={}: {} triangles; SAH build {:.1} ms (median split {:.1} ms); {} nodes, depth {} \
+         (stack {}); memory {:.1} B/triangle = BVH {:.1} + primitive records {:.1}",
+        t.g,
+        t.s,
+        t.triangles,
+        ms(t.build),
+        ms(t.build_median_split),
+        t.nodes,
+        t.depth,
+        STACK_SIZE,
+        (t.accel_bytes + t.primitive_bytes) as f64 / tris,
+        t.accel_bytes as f64 / tris,
+        t.primitive_bytes as f64 / tris,
+    );
+    for s in &t.sets {
+        println!(
+            "    {:<10} {:>7} rays: {:>7.2} Mrays/s on 1 thread, {:>7.2} on {threads}",
+            s.kind.name(),
+            s.rays,
+            s.mrays(s.single),
+            s.mrays(s.parallel)
+        );
+    }
+}
