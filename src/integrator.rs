@@ -37,6 +37,20 @@ const MAX_SHADOW_CROSSINGS: u32 = 32;
 /// A tree of 12 full levels fits, and no test or bundled scene reaches it.
 pub const MAX_SECONDARY_RAYS_PER_SAMPLE: u32 = 4096;
 
+/// What reaches the film: NaN channels (0·∞ in extreme scenes) become 0, infinite or negative
+/// ones are clamped to [0, f32::MAX], so a blown-out pixel stays white rather than turning black.
+#[inline]
+pub fn finite_radiance(c: Vec3) -> Vec3 {
+    let fix = |x: f32| {
+        if x.is_nan() {
+            0.0
+        } else {
+            x.clamp(0.0, f32::MAX)
+        }
+    };
+    Vec3::new(fix(c.x), fix(c.y), fix(c.z))
+}
+
 /// Counts of the rays traced, by kind.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct RayCounts {
@@ -84,11 +98,7 @@ impl<'a> Tracer<'a> {
         self.counts.camera += 1;
         self.budget = MAX_SECONDARY_RAYS_PER_SAMPLE;
         let c = self.radiance(ray, 0, key);
-        if c.is_finite() {
-            c.max(Vec3::ZERO)
-        } else {
-            Vec3::ZERO
-        }
+        finite_radiance(c)
     }
 
     fn radiance(&mut self, ray: &Ray, depth: u32, key: &SampleKey) -> Vec3 {

@@ -59,6 +59,9 @@ impl Accel {
     /// The closest hit with `0 < t < t_max`: the primitive index and its candidate.
     #[inline]
     pub fn closest(&self, prims: &[Primitive], ray: &Ray, t_max: f32) -> Option<(u32, Candidate)> {
+        if t_max.is_nan() || t_max <= 0.0 {
+            return None;
+        }
         match self {
             Accel::List => {
                 let mut best = None;
@@ -85,6 +88,9 @@ impl Accel {
         t_max: f32,
         blocks: impl Fn(u32) -> bool,
     ) -> bool {
+        if t_max.is_nan() || t_max <= 0.0 {
+            return false;
+        }
         match self {
             Accel::List => prims
                 .iter()
