@@ -3,6 +3,8 @@
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 use clap::Parser;
 
@@ -19,13 +21,15 @@ const EXIT_OK: u8 = 0;
 const EXIT_BAD_INPUT: u8 = 1;
 /// Exit status: the command line is wrong.
 const EXIT_USAGE: u8 = 2;
+/// Exit status: interrupted (128 + SIGINT, as shells report it); nothing was written.
+const EXIT_INTERRUPTED: u8 = 130;
 
 #[derive(Parser, Debug)]
 #[command(
     name = "raytracer",
     version,
     about = "Renders a coursework JSON scene to a PPM, PNG or EXR image.",
-    after_help = "Exit codes: 0 rendered; 1 the scene or an asset is bad (or the image could not be written); 2 usage error.\n\
+    after_help = "Exit codes: 0 rendered; 1 the scene or an asset is bad (or the image could not be written); 2 usage error; 130 interrupted (nothing written).\n\
                   Output format by extension: .ppm (binary P6), .png (8-bit), .exr (linear 32-bit float, not tone-mapped)."
 )]
 struct Cli {
@@ -105,12 +109,17 @@ fn main() -> ExitCode {
             eprintln!("error: {e:#}");
             ExitCode::from(EXIT_BAD_INPUT)
         }
+        Err(Failure::Interrupted) => {
+            eprintln!("interrupted: no image written");
+            ExitCode::from(EXIT_INTERRUPTED)
+        }
     }
 }
 
 enum Failure {
     Usage(String),
     Input(anyhow::Error),
+    Interrupted,
 }
 
 fn run(cli: &Cli) -> Result<(), Failure> {
@@ -154,12 +163,16 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         leaf_size: cli.leaf_size as usize,
         max_depth: cli.max_depth.unwrap_or(u32::MAX),
         progress: !cli.quiet && std::io::stderr().is_terminal(),
+        cancel: Some(interrupt_flag()),
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cli.threads.unwrap_or(0))
         .build()
         .map_err(|e| Failure::Input(anyhow::anyhow!("cannot start worker threads: {e}")))?;
     let out = pool.install(|| render(&scene, &options));
+    if out.cancelled {
+        return Err(Failure::Interrupted);
+    }
     let exposure = scene.exposure * cli.exposure;
     write_image(&cli.output, &out.film, cli.tonemap, exposure)
         .map_err(|e| Failure::Input(e.into()))?;
@@ -179,6 +192,16 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         );
     }
     Ok(())
+}
+
+/// A flag that Ctrl-C (SIGINT) sets, so the render stops at the next tile and nothing is written.
+/// If the handler cannot be installed, Ctrl-C keeps its default effect, which also writes nothing:
+/// the image is only written, atomically, after the render.
+fn interrupt_flag() -> Arc<AtomicBool> {
+    let flag = Arc::new(AtomicBool::new(false));
+    let setter = flag.clone();
+    let _ = ctrlc::set_handler(move || setter.store(true, Ordering::Relaxed));
+    flag
 }
 
 /// Whether two paths name the same existing file.

@@ -4,6 +4,8 @@
 //! Output is independent of the thread count and tile order: each pixel's samples depend only on
 //! `(pixel, sample, dimension, seed)` and pixels are written to fixed places.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
@@ -32,6 +34,9 @@ pub struct RenderOptions {
     pub max_depth: u32,
     /// Show a progress bar on stderr.
     pub progress: bool,
+    /// Set from outside (e.g. on Ctrl-C) to stop the render early; the output is then marked
+    /// cancelled and must not be written.
+    pub cancel: Option<Arc<AtomicBool>>,
 }
 
 impl Default for RenderOptions {
@@ -44,6 +49,7 @@ impl Default for RenderOptions {
             leaf_size: 4,
             max_depth: u32::MAX,
             progress: false,
+            cancel: None,
         }
     }
 }
@@ -55,6 +61,8 @@ pub struct RenderOutput {
     pub counts: RayCounts,
     pub build_time: Duration,
     pub render_time: Duration,
+    /// The render was stopped through [`RenderOptions::cancel`]; the film is incomplete.
+    pub cancelled: bool,
 }
 
 /// Renders `scene` with `options`.
@@ -86,6 +94,9 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> RenderOutput {
     let results: Vec<(Vec<Vec3>, RayCounts)> = tiles
         .par_iter()
         .map(|&(tx, ty)| {
+            if cancelled(options) {
+                return (Vec::new(), RayCounts::default());
+            }
             let out = render_tile(scene, &accel, options, tx * TILE, ty * TILE);
             bar.inc(1);
             out
@@ -93,6 +104,7 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> RenderOutput {
         .collect();
     bar.finish_and_clear();
 
+    let cancelled = cancelled(options);
     let mut film = Film::new(w, h);
     let mut counts = RayCounts::default();
     for (&(tx, ty), (pixels, c)) in tiles.iter().zip(&results) {
@@ -109,7 +121,15 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> RenderOutput {
         counts,
         build_time,
         render_time: start.elapsed(),
+        cancelled,
     }
+}
+
+fn cancelled(options: &RenderOptions) -> bool {
+    options
+        .cancel
+        .as_ref()
+        .is_some_and(|c| c.load(Ordering::Relaxed))
 }
 
 fn render_tile(

@@ -240,3 +240,31 @@ fn output_gets_ordinary_file_permissions() {
     let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
     assert_eq!(mode(&out_path), mode(&plain));
 }
+
+/// Ctrl-C during a render stops it without writing: exit status 130, the earlier image at the
+/// output path intact, no temporary files left.
+#[cfg(unix)]
+#[test]
+fn interrupt_leaves_the_output_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_path = dir.path().join("demo.png");
+    std::fs::write(&out_path, b"an earlier render").unwrap();
+    let child = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+        .arg(repo().join("scenes/demo.json"))
+        .arg(&out_path)
+        .args(["--spp", "64", "--quiet"])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(700));
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    assert!(stderr(&o).contains("no image written"));
+    assert_eq!(std::fs::read(&out_path).unwrap(), b"an earlier render");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+}

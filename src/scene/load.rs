@@ -775,6 +775,9 @@ impl<'o> Loader<'o> {
             }
             "triangle" => {
                 let p = self.corners(s, 3)?;
+                if (p[1] - p[0]).cross(p[2] - p[0]) == Vec3::ZERO {
+                    return Err(s.error("the triangle has zero area (its corners are collinear)"));
+                }
                 let uv = self.corner_uvs(s, 3)?.unwrap_or_else(|| {
                     vec![
                         Vec2::new(0.0, 0.0),
@@ -802,7 +805,11 @@ impl<'o> Loader<'o> {
                 // Corners in "Z order" are put in cycle order; explicit uvs follow their corners,
                 // the default ones put image pixel (0,0) at v0 and the first row along v0→v1.
                 let order = cycle_order([p[0], p[1], p[2], p[3]]);
-                let p = order.iter().map(|&i| p[i]).collect();
+                let p: Vec<Vec3> = order.iter().map(|&i| p[i]).collect();
+                let area2 = (p[1] - p[0]).cross(p[2] - p[0]) + (p[2] - p[0]).cross(p[3] - p[0]);
+                if area2 == Vec3::ZERO {
+                    return Err(s.error("the quad has zero area (its corners are collinear)"));
+                }
                 let uv = match self.corner_uvs(s, 4)? {
                     Some(uv) => order.iter().map(|&i| uv[i]).collect(),
                     None => vec![
@@ -1053,6 +1060,9 @@ impl<'o> Loader<'o> {
             return Err(required(s, &["faces", "fs", "tris", "triangles"])
                 .err()
                 .unwrap_or_else(|| s.error("missing faces")));
+        }
+        if polygons.is_empty() {
+            return Err(s.error("the mesh has no faces"));
         }
         let mut faces = Vec::new();
         for (node, ids) in polygons {
