@@ -12,6 +12,7 @@ pub mod integrator;
 pub mod light;
 pub mod material;
 pub mod math;
+pub mod metric;
 pub mod ray;
 pub mod render;
 pub mod sampling;
