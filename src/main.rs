@@ -15,6 +15,8 @@ use raytracer::render::{render, RenderOptions};
 use raytracer::sampling::Method;
 use raytracer::scene::{load, LoadOptions};
 
+mod compare_cli;
+
 /// Exit status: the image was written.
 const EXIT_OK: u8 = 0;
 /// Exit status: the scene or an asset is bad, or the output could not be written.
@@ -30,7 +32,8 @@ const EXIT_INTERRUPTED: u8 = 130;
     version,
     about = "Renders a coursework JSON scene to a PPM, PNG or EXR image.",
     after_help = "Exit codes: 0 rendered; 1 the scene or an asset is bad (or the image could not be written); 2 usage error; 130 interrupted (nothing written).\n\
-                  Output format by extension: .ppm (binary P6), .png (8-bit), .exr (linear 32-bit float, not tone-mapped)."
+                  Output format by extension: .ppm (binary P6), .png (8-bit), .exr (linear 32-bit float, not tone-mapped).\n\
+                  Image comparison: raytracer compare --help."
 )]
 struct Cli {
     /// The scene file (JSON; comments and trailing commas allowed).
@@ -91,7 +94,11 @@ struct Cli {
 }
 
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    if args.get(1).is_some_and(|a| a == "compare") {
+        return compare_cli::main(&args[1..]);
+    }
+    let cli = match Cli::try_parse_from(&args) {
         Ok(c) => c,
         Err(e) => {
             let code = if e.use_stderr() { EXIT_USAGE } else { EXIT_OK };
