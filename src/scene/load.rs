@@ -166,6 +166,16 @@ fn required<'a, 't>(node: &Node<'a, 't>, keys: &[&str]) -> Result<Node<'a, 't>, 
     })
 }
 
+/// The required number `key`, which must be > 0.
+fn positive(node: &Node, key: &str) -> Result<f32, SceneError> {
+    let n = required(node, &[key])?;
+    let v = n.f32()?;
+    if v <= 0.0 {
+        return Err(n.error(format!("the {key} must be > 0, found {v}")));
+    }
+    Ok(v)
+}
+
 fn opt_f32(node: &Node, keys: &[&str]) -> Result<Option<f32>, SceneError> {
     node.get_any(keys).map(|n| n.f32()).transpose()
 }
@@ -741,11 +751,7 @@ impl<'o> Loader<'o> {
         match kind.as_str() {
             "sphere" | "uvsphere" => {
                 let center = required(s, &["center", "centre", "position"])?.vec3()?;
-                let rn = required(s, &["radius"])?;
-                let radius = rn.f32()?;
-                if radius <= 0.0 {
-                    return Err(rn.error(format!("the radius must be > 0, found {radius}")));
-                }
+                let radius = positive(s, "radius")?;
                 self.primitives.push(Primitive {
                     shape: Shape::Sphere(Sphere::new(center, radius, SPHERE_POLE, SPHERE_SEAM)),
                     material,
@@ -758,16 +764,8 @@ impl<'o> Loader<'o> {
                 if axis.length_squared() == 0.0 {
                     return Err(an.error("the axis must not be zero"));
                 }
-                let rn = required(s, &["radius"])?;
-                let radius = rn.f32()?;
-                if radius <= 0.0 {
-                    return Err(rn.error(format!("the radius must be > 0, found {radius}")));
-                }
-                let hn = required(s, &["height"])?;
-                let half = hn.f32()?;
-                if half <= 0.0 {
-                    return Err(hn.error(format!("the height must be > 0, found {half}")));
-                }
+                let radius = positive(s, "radius")?;
+                let half = positive(s, "height")?;
                 self.primitives.push(Primitive {
                     shape: Shape::Cylinder(Cylinder::new(center, axis, radius, half)),
                     material,
