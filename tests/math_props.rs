@@ -5,6 +5,8 @@ use raytracer::integrator::finite_radiance;
 use raytracer::math::{fresnel_dielectric, orthonormal_basis, reflect, refract, Vec3};
 use raytracer::ray::offset_ray_origin;
 
+const SEED: u64 = 0x5eed_2026;
+
 fn unit() -> impl Strategy<Value = Vec3> {
     (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0)
         .prop_filter("not too short", |(x, y, z)| x * x + y * y + z * z > 1e-3)
@@ -16,7 +18,14 @@ fn point() -> impl Strategy<Value = Vec3> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(4096))]
+    // A fixed seed: CI runs the same 4,096 cases every time (change the seed to explore).
+    #![proptest_config(ProptestConfig {
+        cases: 4096,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(SEED),
+        failure_persistence: None,
+        max_global_rejects: 1 << 20,
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn basis_is_orthonormal_and_right_handed(n in unit()) {
@@ -54,6 +63,9 @@ proptest! {
                 let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
                 prop_assert!((eta * sin_i - sin_t).abs() < 2e-3, "{} vs {}", eta * sin_i, sin_t);
                 prop_assert!(f < 1.0);
+                // Reciprocity, away from grazing angles on either side (and so from the critical
+                // angle), where R's slope is unbounded and f32 rounding of the cosines dominates.
+                prop_assume!(cos_t > 0.1 && cos_i > 0.1);
                 let back = fresnel_dielectric(cos_t, 1.0 / eta);
                 prop_assert!((f - back).abs() < 2e-3, "{} vs {}", f, back);
             }
