@@ -17,4 +17,5 @@ pub mod ray;
 pub mod render;
 pub mod sampling;
 pub mod scene;
+pub mod study;
 pub mod texture;

@@ -16,6 +16,7 @@ use raytracer::sampling::Method;
 use raytracer::scene::{load, LoadOptions};
 
 mod compare_cli;
+mod study_cli;
 
 /// Exit status: the image was written.
 const EXIT_OK: u8 = 0;
@@ -43,9 +44,21 @@ struct Cli {
     /// Samples per pixel (stratified). 1 traces one ray through each pixel centre.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     spp: u32,
-    /// Placement of pixel and lens samples: random or jittered.
+    /// Placement of pixel and lens samples: random, jittered or sobol.
     #[arg(long, default_value = "jittered")]
     pixel_sampler: Method,
+    /// Sampler for pixel, lens and every area light (overrides --pixel-sampler and each light's
+    /// method): random, jittered or sobol.
+    #[arg(long)]
+    sampler: Option<Method>,
+    /// Adaptive area lights: probe a 3×3 grid on each light first and trace all its shadow rays
+    /// only where the probes disagree (faster; can miss occluders between the probes' rays).
+    #[arg(long)]
+    adaptive_lights: bool,
+    /// Skip reflection/refraction rays whose accumulated weight is below X (POV-Ray's
+    /// adc_bailout; 1/255 = 0.0039 is one 8-bit step).
+    #[arg(long, value_name = "X")]
+    adc_bailout: Option<f32>,
     /// Seed for every random number (the image is a pure function of the scene, options and seed).
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -97,6 +110,9 @@ fn main() -> ExitCode {
     let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
     if args.get(1).is_some_and(|a| a == "compare") {
         return compare_cli::main(&args[1..]);
+    }
+    if args.get(1).is_some_and(|a| a == "study") {
+        return study_cli::main(&args[1..]);
     }
     let cli = match Cli::try_parse_from(&args) {
         Ok(c) => c,
@@ -164,11 +180,17 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     }
     let options = RenderOptions {
         spp: cli.spp,
-        pixel_method: cli.pixel_sampler,
+        pixel_method: cli.sampler.unwrap_or(cli.pixel_sampler),
         seed: cli.seed,
         accel: cli.accel,
         leaf_size: cli.leaf_size as usize,
         max_depth: cli.max_depth.unwrap_or(u32::MAX),
+        trace: raytracer::integrator::TraceOptions {
+            light_method: cli.sampler,
+            light_samples: None,
+            adaptive_lights: cli.adaptive_lights,
+            cutoff: cli.adc_bailout,
+        },
         progress: !cli.quiet && std::io::stderr().is_terminal(),
         cancel: Some(interrupt_flag()),
     };

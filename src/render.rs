@@ -12,7 +12,7 @@ use rayon::prelude::*;
 
 use crate::accel::{Accel, AccelKind};
 use crate::film::Film;
-use crate::integrator::{RayCounts, Tracer};
+use crate::integrator::{RayCounts, TraceOptions, Tracer};
 use crate::math::{Vec2, Vec3};
 use crate::sampling::{Method, SampleKey};
 use crate::scene::Scene;
@@ -32,6 +32,8 @@ pub struct RenderOptions {
     pub leaf_size: usize,
     /// Cap on recursion depth on top of the scene's `nbounces`.
     pub max_depth: u32,
+    /// Light-sampling overrides and work-skipping switches (the default changes nothing).
+    pub trace: TraceOptions,
     /// Show a progress bar on stderr.
     pub progress: bool,
     /// Set from outside (e.g. on Ctrl-C) to stop the render early; the output is then marked
@@ -48,6 +50,7 @@ impl Default for RenderOptions {
             accel: AccelKind::Auto,
             leaf_size: 4,
             max_depth: u32::MAX,
+            trace: TraceOptions::default(),
             progress: false,
             cancel: None,
         }
@@ -142,6 +145,7 @@ fn render_tile(
     let (w, h) = (scene.camera.width, scene.camera.height);
     let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
     let mut tracer = Tracer::new(scene, accel, options.max_depth);
+    tracer.options = options.trace;
     let spp = options.spp.max(1);
     let mut pixels = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
     for y in y0..y1 {

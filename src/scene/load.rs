@@ -676,6 +676,7 @@ impl<'o> Loader<'o> {
             Some(n) => match n.str()?.to_ascii_lowercase().as_str() {
                 "random" | "uniform" => Method::Random,
                 "jittered" | "stratified" | "jitter" => Method::Jittered,
+                "sobol" => Method::Sobol,
                 other => {
                     self.warn(
                         &n,
@@ -691,10 +692,10 @@ impl<'o> Loader<'o> {
             Some(n) => n.u32()?.max(1),
             None => 4,
         };
-        // `jittered`: `samples` is the side of the grid; `random`: the total.
+        // `jittered`: `samples` is the side of the grid; `random` and `sobol`: the total.
         let total = match method {
             Method::Jittered => samples as u64 * samples as u64,
-            Method::Random => samples as u64,
+            Method::Random | Method::Sobol => samples as u64,
         };
         if total > self.options.max_light_samples as u64 {
             let n = samples_node.unwrap_or_else(|| l.clone());
