@@ -478,6 +478,7 @@ pub fn estimate_render(
         return Duration::ZERO;
     }
     let mut tracer = Tracer::new(scene, accel, options.max_depth);
+    tracer.options = options.trace;
     let start = Instant::now();
     let mut traced = 0u64;
     // A stride coprime with the pixel count visits pixels spread over the whole image.

@@ -14,11 +14,28 @@
 //! `kt`), `h = normalize(l + v)`, and `F` the dielectric Fresnel reflectance (1 under total
 //! internal reflection). Reflection and refraction are traced only while the depth is below
 //! `nbounces`.
+//!
+//! Work a shading point does not need:
+//! - a shadow ray towards a light sample behind the side of the surface we see (`l · n ≤ 0`) is
+//!   never traced: that sample contributes nothing, whatever the visibility. Always on; it changes
+//!   no pixel.
+//! - [`TraceOptions::adaptive_lights`] (opt-in): before an area light's `n > 9` shadow rays, nine
+//!   probes towards a 3×3 grid over it (corners, edge midpoints, centre); if they all see the same
+//!   transmittance the light is taken to be uniformly visible (all `n` samples are shaded with
+//!   that transmittance, or skipped when it is 0) and only the probes are traced. Penumbrae, where
+//!   the probes disagree, get all `n` rays. This is POV-Ray's `adaptive` area-light idea (test a
+//!   coarse set first, refine where it disagrees) cut to one level; it misses occluders that fit
+//!   between the probes' rays.
+//! - [`TraceOptions::cutoff`] (opt-in): a reflection or refraction ray whose accumulated weight
+//!   (the product of the `kr + kt·F` and `kt·(1 − F)` factors down the tree) is below the cut-off
+//!   is not traced, as POV-Ray's `adc_bailout` does; at 1/255 a branch then cannot change an 8-bit
+//!   pixel unless its radiance is above 1.
 
 use crate::accel::Accel;
+use crate::light::Light;
 use crate::math::{fresnel_dielectric, reflect, refract, Vec2, Vec3};
 use crate::ray::{Hit, Ray};
-use crate::sampling::SampleKey;
+use crate::sampling::{Method, SampleKey};
 use crate::scene::{RenderMode, Scene};
 
 /// Colour of a hit in `rendermode: binary` (misses are black), as in the CGR specification.
@@ -36,6 +53,71 @@ const MAX_SHADOW_CROSSINGS: u32 = 32;
 /// `nbounces: 50` would never finish); past this budget a branch returns only its direct light.
 /// A tree of 12 full levels fits, and no test or bundled scene reaches it.
 pub const MAX_SECONDARY_RAYS_PER_SAMPLE: u32 = 4096;
+
+/// What reaches the film: NaN channels (0·∞ in extreme scenes) become 0, infinite or negative
+/// ones are clamped to [0, f32::MAX], so a blown-out pixel stays white rather than turning black.
+#[inline]
+pub fn finite_radiance(c: Vec3) -> Vec3 {
+    let fix = |x: f32| {
+        if x.is_nan() {
+            0.0
+        } else {
+            x.clamp(0.0, f32::MAX)
+        }
+    };
+    Vec3::new(fix(c.x), fix(c.y), fix(c.z))
+}
+
+/// Probe points of [`TraceOptions::adaptive_lights`]: a 3×3 grid over the light (corners, edge
+/// midpoints, centre), the outer ones inset slightly so that a light whose edge touches a wall is
+/// not probed through the wall. Corners alone (POV-Ray's first level) miss an occluder smaller
+/// than the light that hides its middle: the umbra under it vanishes.
+const ADAPTIVE_PROBES: [Vec2; 9] = {
+    const E: f32 = 1e-3;
+    [
+        Vec2::new(E, E),
+        Vec2::new(0.5, E),
+        Vec2::new(1.0 - E, E),
+        Vec2::new(E, 0.5),
+        Vec2::new(0.5, 0.5),
+        Vec2::new(1.0 - E, 0.5),
+        Vec2::new(E, 1.0 - E),
+        Vec2::new(0.5, 1.0 - E),
+        Vec2::new(1.0 - E, 1.0 - E),
+    ]
+};
+
+/// The POV-Ray default `adc_bailout`: one 8-bit step.
+pub const DEFAULT_CUTOFF: f32 = 1.0 / 255.0;
+
+/// Changes to how a [`Tracer`] samples lights and prunes the ray tree. The default changes
+/// nothing: every light is sampled as its scene says and every ray is traced.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TraceOptions {
+    /// Sample every area light with this method instead of its own.
+    pub light_method: Option<Method>,
+    /// Take this many shadow rays per shading point towards every area light instead of its own
+    /// count (the total, whatever the method).
+    pub light_samples: Option<u32>,
+    /// Probe a 3×3 grid on each area light first and skip its other shadow rays where the probes agree (see
+    /// the module docs).
+    pub adaptive_lights: bool,
+    /// Do not trace reflection or refraction rays whose accumulated weight is below this.
+    pub cutoff: Option<f32>,
+}
+
+impl TraceOptions {
+    /// Shadow rays per shading point and their placement for `light`.
+    pub fn light_plan(&self, light: &Light) -> (u32, Method) {
+        match light {
+            Light::Point { .. } => (1, light.method()),
+            Light::Quad { .. } => (
+                self.light_samples.unwrap_or(light.sample_count()).max(1),
+                self.light_method.unwrap_or(light.method()),
+            ),
+        }
+    }
+}
 
 /// Counts of the rays traced, by kind.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -63,6 +145,7 @@ pub struct Tracer<'a> {
     pub accel: &'a Accel,
     /// Cap on recursion on top of the scene's `nbounces`.
     pub max_depth: u32,
+    pub options: TraceOptions,
     pub counts: RayCounts,
     /// Secondary rays left for the current camera sample.
     budget: u32,
@@ -74,6 +157,7 @@ impl<'a> Tracer<'a> {
             scene,
             accel,
             max_depth,
+            options: TraceOptions::default(),
             counts: RayCounts::default(),
             budget: MAX_SECONDARY_RAYS_PER_SAMPLE,
         }
@@ -83,15 +167,13 @@ impl<'a> Tracer<'a> {
     pub fn trace_camera(&mut self, ray: &Ray, key: &SampleKey) -> Vec3 {
         self.counts.camera += 1;
         self.budget = MAX_SECONDARY_RAYS_PER_SAMPLE;
-        let c = self.radiance(ray, 0, key);
-        if c.is_finite() {
-            c.max(Vec3::ZERO)
-        } else {
-            Vec3::ZERO
-        }
+        let c = self.radiance(ray, 0, key, 1.0);
+        finite_radiance(c)
     }
 
-    fn radiance(&mut self, ray: &Ray, depth: u32, key: &SampleKey) -> Vec3 {
+    /// Radiance along `ray` at recursion `depth`; `weight` is the share of the camera sample's
+    /// value it carries (for the cut-off).
+    fn radiance(&mut self, ray: &Ray, depth: u32, key: &SampleKey, weight: f32) -> Vec3 {
         let scene = self.scene;
         let Some((prim, cand)) = self.accel.closest(&scene.primitives, ray, f32::INFINITY) else {
             return match scene.mode {
@@ -119,27 +201,41 @@ impl<'a> Tracer<'a> {
 
         let mut color = Vec3::ZERO;
         for (li, light) in scene.lights.iter().enumerate() {
-            let count = light.sample_count();
+            let (count, method) = self.options.light_plan(light);
+            // Each sample carries 1/count of the light (the same value `Light::sample` gives for
+            // the scene's own count).
+            let share = 1.0 / count as f32;
             let light_key = key.stream(li as u64);
             let intensity = light.intensity();
+            let known = if self.options.adaptive_lights && count > ADAPTIVE_PROBES.len() as u32 {
+                self.uniform_visibility(&hit, n, light)
+            } else {
+                None
+            };
+            if known == Some(0.0) {
+                continue; // every probe is blocked: the light is taken as fully hidden
+            }
             for s in 0..count {
                 let u = if count == 1 {
                     Vec2::splat(0.5)
                 } else {
-                    light_key.set_point(light.method(), 0, s, count)
+                    light_key.set_point(method, 0, s, count)
                 };
                 let sample = light.sample(u);
                 let to_light = sample.position - hit.point;
                 if to_light.dot(n) <= 0.0 {
-                    continue; // the light is behind the side we see
+                    continue; // the light is behind the side we see: no shadow ray needed
                 }
                 let d2 = to_light.length_squared();
-                let visibility = self.transmittance(&hit, sample.position);
+                let visibility = match known {
+                    Some(v) => v,
+                    None => self.transmittance(&hit, sample.position),
+                };
                 if visibility == 0.0 {
                     continue;
                 }
                 let l = to_light / d2.sqrt();
-                let e = sample.weight * intensity.falloff(d2) * visibility;
+                let e = share * intensity.falloff(d2) * visibility;
                 let n_dot_l = ns.dot(l).max(0.0);
                 color += material.kd * base * intensity.diffuse * (n_dot_l * e);
                 if material.ks > 0.0 {
@@ -164,17 +260,43 @@ impl<'a> Tracer<'a> {
             let f = fresnel_dielectric(cos_i, eta);
             reflect_weight += material.kt * f;
             let transmit = material.kt * (1.0 - f);
-            if transmit > 0.0 {
+            if transmit > 0.0 && self.worth_tracing(weight * transmit) {
                 if let Some(t) = refract(ray.dir, n, eta) {
-                    color += transmit * self.secondary(&hit, t, depth, key, 2);
+                    color += transmit * self.secondary(&hit, t, depth, key, 2, weight * transmit);
                 }
             }
         }
-        if reflect_weight > 0.0 {
+        if reflect_weight > 0.0 && self.worth_tracing(weight * reflect_weight) {
             let r = reflect(ray.dir, n).normalize();
-            color += reflect_weight * self.secondary(&hit, r, depth, key, 1);
+            color +=
+                reflect_weight * self.secondary(&hit, r, depth, key, 1, weight * reflect_weight);
         }
         color
+    }
+
+    /// Whether a secondary ray of accumulated `weight` passes the cut-off (always, without one).
+    #[inline]
+    fn worth_tracing(&self, weight: f32) -> bool {
+        self.options.cutoff.is_none_or(|c| weight >= c)
+    }
+
+    /// Adaptive area-light sampling: the transmittance the light's probe points all see from
+    /// `hit`, or `None` when they disagree or a probe point is behind the surface.
+    fn uniform_visibility(&mut self, hit: &Hit, n: Vec3, light: &Light) -> Option<f32> {
+        let mut seen = None;
+        for u in ADAPTIVE_PROBES {
+            let p = light.sample(u).position;
+            if (p - hit.point).dot(n) <= 0.0 {
+                return None;
+            }
+            let v = self.transmittance(hit, p);
+            match seen {
+                None => seen = Some(v),
+                Some(s) if s != v => return None,
+                Some(_) => {}
+            }
+        }
+        seen
     }
 
     fn secondary(
@@ -184,6 +306,7 @@ impl<'a> Tracer<'a> {
         depth: u32,
         key: &SampleKey,
         branch: u64,
+        weight: f32,
     ) -> Vec3 {
         if self.budget == 0 {
             return Vec3::ZERO;
@@ -191,7 +314,7 @@ impl<'a> Tracer<'a> {
         self.budget -= 1;
         self.counts.secondary += 1;
         let ray = hit.spawn(dir);
-        self.radiance(&ray, depth + 1, &key.stream(0x1000 + branch))
+        self.radiance(&ray, depth + 1, &key.stream(0x1000 + branch), weight)
     }
 
     /// Fraction of light reaching `hit` from `target`: 0 behind an opaque surface, multiplied by

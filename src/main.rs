@@ -3,6 +3,8 @@
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 use clap::Parser;
 
@@ -14,6 +16,8 @@ use raytracer::sampling::Method;
 use raytracer::scene::{load, LoadOptions};
 
 mod bench_cli;
+mod compare_cli;
+mod study_cli;
 
 /// Exit status: the image was written.
 const EXIT_OK: u8 = 0;
@@ -21,15 +25,17 @@ const EXIT_OK: u8 = 0;
 const EXIT_BAD_INPUT: u8 = 1;
 /// Exit status: the command line is wrong.
 const EXIT_USAGE: u8 = 2;
+/// Exit status: interrupted (128 + SIGINT, as shells report it); nothing was written.
+const EXIT_INTERRUPTED: u8 = 130;
 
 #[derive(Parser, Debug)]
 #[command(
     name = "raytracer",
     version,
     about = "Renders a coursework JSON scene to a PPM, PNG or EXR image.",
-    after_help = "Exit codes: 0 rendered; 1 the scene or an asset is bad (or the image could not be written); 2 usage error.\n\
+    after_help = "Exit codes: 0 rendered; 1 the scene or an asset is bad (or the image could not be written); 2 usage error; 130 interrupted (nothing written).\n\
                   Output format by extension: .ppm (binary P6), .png (8-bit), .exr (linear 32-bit float, not tone-mapped).\n\
-                  Benchmarks: raytracer bench --help."
+                  Image comparison: raytracer compare --help. Benchmarks: raytracer bench --help."
 )]
 struct Cli {
     /// The scene file (JSON; comments and trailing commas allowed).
@@ -39,9 +45,21 @@ struct Cli {
     /// Samples per pixel (stratified). 1 traces one ray through each pixel centre.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     spp: u32,
-    /// Placement of pixel and lens samples: random or jittered.
+    /// Placement of pixel and lens samples: random, jittered or sobol.
     #[arg(long, default_value = "jittered")]
     pixel_sampler: Method,
+    /// Sampler for pixel, lens and every area light (overrides --pixel-sampler and each light's
+    /// method): random, jittered or sobol.
+    #[arg(long)]
+    sampler: Option<Method>,
+    /// Adaptive area lights: probe a 3×3 grid on each light first and trace all its shadow rays
+    /// only where the probes disagree (faster; can miss occluders between the probes' rays).
+    #[arg(long)]
+    adaptive_lights: bool,
+    /// Skip reflection/refraction rays whose accumulated weight is below X (POV-Ray's
+    /// adc_bailout; 1/255 = 0.0039 is one 8-bit step).
+    #[arg(long, value_name = "X")]
+    adc_bailout: Option<f32>,
     /// Seed for every random number (the image is a pure function of the scene, options and seed).
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -94,6 +112,12 @@ fn main() -> ExitCode {
     if args.get(1).is_some_and(|a| a == "bench") {
         return bench_cli::main(&args[1..]);
     }
+    if args.get(1).is_some_and(|a| a == "compare") {
+        return compare_cli::main(&args[1..]);
+    }
+    if args.get(1).is_some_and(|a| a == "study") {
+        return study_cli::main(&args[1..]);
+    }
     let cli = match Cli::try_parse_from(&args) {
         Ok(c) => c,
         Err(e) => {
@@ -112,12 +136,17 @@ fn main() -> ExitCode {
             eprintln!("error: {e:#}");
             ExitCode::from(EXIT_BAD_INPUT)
         }
+        Err(Failure::Interrupted) => {
+            eprintln!("interrupted: no image written");
+            ExitCode::from(EXIT_INTERRUPTED)
+        }
     }
 }
 
 enum Failure {
     Usage(String),
     Input(anyhow::Error),
+    Interrupted,
 }
 
 fn run(cli: &Cli) -> Result<(), Failure> {
@@ -155,18 +184,28 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     }
     let options = RenderOptions {
         spp: cli.spp,
-        pixel_method: cli.pixel_sampler,
+        pixel_method: cli.sampler.unwrap_or(cli.pixel_sampler),
         seed: cli.seed,
         accel: cli.accel,
         leaf_size: cli.leaf_size as usize,
         max_depth: cli.max_depth.unwrap_or(u32::MAX),
+        trace: raytracer::integrator::TraceOptions {
+            light_method: cli.sampler,
+            light_samples: None,
+            adaptive_lights: cli.adaptive_lights,
+            cutoff: cli.adc_bailout,
+        },
         progress: !cli.quiet && std::io::stderr().is_terminal(),
+        cancel: Some(interrupt_flag()),
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cli.threads.unwrap_or(0))
         .build()
         .map_err(|e| Failure::Input(anyhow::anyhow!("cannot start worker threads: {e}")))?;
     let out = pool.install(|| render(&scene, &options));
+    if out.cancelled {
+        return Err(Failure::Interrupted);
+    }
     let exposure = scene.exposure * cli.exposure;
     write_image(&cli.output, &out.film, cli.tonemap, exposure)
         .map_err(|e| Failure::Input(e.into()))?;
@@ -186,6 +225,16 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         );
     }
     Ok(())
+}
+
+/// A flag that Ctrl-C (SIGINT) sets, so the render stops at the next tile and nothing is written.
+/// If the handler cannot be installed, Ctrl-C keeps its default effect, which also writes nothing:
+/// the image is only written, atomically, after the render.
+fn interrupt_flag() -> Arc<AtomicBool> {
+    let flag = Arc::new(AtomicBool::new(false));
+    let setter = flag.clone();
+    let _ = ctrlc::set_handler(move || setter.store(true, Ordering::Relaxed));
+    flag
 }
 
 /// Whether two paths name the same existing file.

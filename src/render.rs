@@ -4,13 +4,15 @@
 //! Output is independent of the thread count and tile order: each pixel's samples depend only on
 //! `(pixel, sample, dimension, seed)` and pixels are written to fixed places.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
 use crate::accel::{Accel, AccelKind};
 use crate::film::Film;
-use crate::integrator::{RayCounts, Tracer};
+use crate::integrator::{RayCounts, TraceOptions, Tracer};
 use crate::math::{Vec2, Vec3};
 use crate::sampling::{Method, SampleKey};
 use crate::scene::Scene;
@@ -30,8 +32,13 @@ pub struct RenderOptions {
     pub leaf_size: usize,
     /// Cap on recursion depth on top of the scene's `nbounces`.
     pub max_depth: u32,
+    /// Light-sampling overrides and work-skipping switches (the default changes nothing).
+    pub trace: TraceOptions,
     /// Show a progress bar on stderr.
     pub progress: bool,
+    /// Set from outside (e.g. on Ctrl-C) to stop the render early; the output is then marked
+    /// cancelled and must not be written.
+    pub cancel: Option<Arc<AtomicBool>>,
 }
 
 impl Default for RenderOptions {
@@ -43,7 +50,9 @@ impl Default for RenderOptions {
             accel: AccelKind::Auto,
             leaf_size: 4,
             max_depth: u32::MAX,
+            trace: TraceOptions::default(),
             progress: false,
+            cancel: None,
         }
     }
 }
@@ -55,6 +64,8 @@ pub struct RenderOutput {
     pub counts: RayCounts,
     pub build_time: Duration,
     pub render_time: Duration,
+    /// The render was stopped through [`RenderOptions::cancel`]; the film is incomplete.
+    pub cancelled: bool,
 }
 
 /// Renders `scene` with `options`.
@@ -94,6 +105,9 @@ pub fn render_with_accel(scene: &Scene, accel: &Accel, options: &RenderOptions) 
     let results: Vec<(Vec<Vec3>, RayCounts)> = tiles
         .par_iter()
         .map(|&(tx, ty)| {
+            if cancelled(options) {
+                return (Vec::new(), RayCounts::default());
+            }
             let out = render_tile(scene, accel, options, tx * TILE, ty * TILE);
             bar.inc(1);
             out
@@ -101,6 +115,7 @@ pub fn render_with_accel(scene: &Scene, accel: &Accel, options: &RenderOptions) 
         .collect();
     bar.finish_and_clear();
 
+    let cancelled = cancelled(options);
     let mut film = Film::new(w, h);
     let mut counts = RayCounts::default();
     for (&(tx, ty), (pixels, c)) in tiles.iter().zip(&results) {
@@ -117,7 +132,15 @@ pub fn render_with_accel(scene: &Scene, accel: &Accel, options: &RenderOptions) 
         counts,
         build_time: Duration::ZERO,
         render_time: start.elapsed(),
+        cancelled,
     }
+}
+
+fn cancelled(options: &RenderOptions) -> bool {
+    options
+        .cancel
+        .as_ref()
+        .is_some_and(|c| c.load(Ordering::Relaxed))
 }
 
 fn render_tile(
@@ -130,6 +153,7 @@ fn render_tile(
     let (w, h) = (scene.camera.width, scene.camera.height);
     let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
     let mut tracer = Tracer::new(scene, accel, options.max_depth);
+    tracer.options = options.trace;
     let spp = options.spp.max(1);
     let mut pixels = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
     for y in y0..y1 {

@@ -2,12 +2,22 @@
 //! seed), so an image is bit-identical whatever the thread count or tile order: no generator state
 //! is carried between pixels or threads.
 //!
-//! Two sample-placement methods, chosen per use (pixel anti-aliasing, thin-lens aperture, each area
-//! light):
+//! Three sample-placement methods, chosen per use (pixel anti-aliasing, thin-lens aperture, each
+//! area light):
 //! - `random`: independent uniform samples;
 //! - `jittered`: stratified. For `n` samples where `n` is a perfect square `k²`, one sample in each
 //!   cell of a `k×k` grid; otherwise one sample in each row and each column of an `n×n` grid
 //!   ("N-rooks", a Latin hypercube), with the column order shuffled per pixel.
+//! - `sobol`: the first two dimensions of the Sobol sequence with hash-based Owen scrambling
+//!   (Burley, "Practical Hash-based Owen Scrambling", JCGT 9(4), 2020), through the `sobol_burley`
+//!   crate. Any power-of-two prefix of `2^m` points has one point in every elementary interval of
+//!   area `2^-m` (a (0,m,2)-net), and the scrambling keeps that while randomising the points.
+//!   Each 2D set (a pixel's anti-aliasing pattern, its lens pattern, the shadow rays towards one
+//!   light at one shading point) gets its own seed from the same hash as the other methods, and
+//!   the crate's seeded nested shuffle of the index makes sets with different seeds statistically
+//!   independent ("padding", Burley §4; pbrt-v4's `PaddedSobolSampler` does the same with
+//!   per-dimension hashes). Decorrelation therefore comes from the seeds rather than from higher
+//!   Sobol dimensions, whose 2D projections are worse nets than dimensions 0 and 1.
 
 use crate::math::{Vec2, Vec3};
 
@@ -19,6 +29,8 @@ pub enum Method {
     /// One sample per stratum (see the module docs).
     #[default]
     Jittered,
+    /// Owen-scrambled Sobol points (see the module docs).
+    Sobol,
 }
 
 impl std::str::FromStr for Method {
@@ -27,8 +39,9 @@ impl std::str::FromStr for Method {
         match s.to_ascii_lowercase().as_str() {
             "random" => Ok(Method::Random),
             "jittered" | "stratified" => Ok(Method::Jittered),
+            "sobol" => Ok(Method::Sobol),
             other => Err(format!(
-                "unknown sampling method '{other}' (expected random or jittered)"
+                "unknown sampling method '{other}' (expected random, jittered or sobol)"
             )),
         }
     }
@@ -39,6 +52,7 @@ impl std::fmt::Display for Method {
         f.write_str(match self {
             Method::Random => "random",
             Method::Jittered => "jittered",
+            Method::Sobol => "sobol",
         })
     }
 }
@@ -128,6 +142,10 @@ impl SampleKey {
                 let stratum = permute(self.sample, self.spp, key);
                 stratum_point(stratum, self.spp, u, key.rotate_left(16))
             }
+            Method::Sobol => sobol2(
+                self.sample,
+                (hash(&[self.pixel_key, dimension, 0x50b0]) >> 32) as u32,
+            ),
         }
     }
 
@@ -145,8 +163,28 @@ impl SampleKey {
                 u,
                 (hash(&[self.key, dimension]) & 0xffff_ffff) as u32,
             ),
+            Method::Sobol => sobol2(index, (hash(&[self.key, dimension, 0x50b0]) >> 32) as u32),
         }
     }
+}
+
+/// Point `index` of the 2D Owen-scrambled Sobol set keyed by `seed`: dimensions 0 and 1 of the
+/// sequence, both scrambled and shuffled with `seed` so that they stay paired. The crate supports
+/// indices below 2^16; later points continue in a fresh, independently seeded copy of the sequence
+/// (still well spread, though the set is then no longer one net).
+#[inline]
+pub fn sobol2(index: u32, seed: u32) -> Vec2 {
+    const LEN: u32 = 1 << 16;
+    let (block, i) = (index / LEN, index % LEN);
+    let seed = if block == 0 {
+        seed
+    } else {
+        (hash(&[seed as u64, block as u64]) >> 32) as u32
+    };
+    Vec2::new(
+        sobol_burley::sample(i, 0, seed),
+        sobol_burley::sample(i, 1, seed),
+    )
 }
 
 /// The point of stratum `index` out of `count`, offset by `jitter ∈ [0,1)²` inside its stratum.
@@ -277,6 +315,102 @@ mod tests {
             cols[(p.y * n as f32) as usize] += 1;
         }
         assert!(rows.iter().all(|&c| c == 1) && cols.iter().all(|&c| c == 1));
+    }
+
+    /// Whether `points` has exactly one point in each cell of every `2^a × 2^b` grid with
+    /// `a + b = log2(points.len())` (the (0,m,2)-net property).
+    fn is_net(points: &[Vec2]) -> bool {
+        let m = points.len().trailing_zeros();
+        (0..=m).all(|a| {
+            let (nx, ny) = (1usize << a, 1usize << (m - a));
+            let mut cells = vec![0u32; points.len()];
+            for p in points {
+                cells[(p.y * ny as f32) as usize * nx + (p.x * nx as f32) as usize] += 1;
+            }
+            cells.iter().all(|&c| c == 1)
+        })
+    }
+
+    #[test]
+    fn sobol_sets_are_stratified_nets_in_the_unit_square() {
+        for (x, y, seed) in [(0, 0, 0), (3, 4, 7), (100, 7, 12345)] {
+            let key = SampleKey::new(x, y, 0, 1, seed).stream(2);
+            for m in 0..=8 {
+                let n = 1u32 << m;
+                let set: Vec<Vec2> = (0..n)
+                    .map(|i| key.set_point(Method::Sobol, 0, i, n))
+                    .collect();
+                assert!(set
+                    .iter()
+                    .all(|p| (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y)));
+                assert!(is_net(&set), "{n} points at ({x}, {y}) seed {seed}");
+            }
+            // In particular, the first 16 points fill the 4×4 grid one per cell.
+            let mut cells = [0u32; 16];
+            for i in 0..16 {
+                let p = key.set_point(Method::Sobol, 0, i, 16);
+                cells[(p.y * 4.0) as usize * 4 + (p.x * 4.0) as usize] += 1;
+            }
+            assert!(cells.iter().all(|&c| c == 1), "{cells:?}");
+        }
+        // Per-pixel patterns too: the 64 camera samples of a pixel form a net.
+        let pattern: Vec<Vec2> = (0..64)
+            .map(|s| SampleKey::new(5, 9, s, 64, 3).pixel_pattern(Method::Sobol, 0))
+            .collect();
+        assert!(is_net(&pattern));
+    }
+
+    #[test]
+    fn sobol_sets_are_deterministic_and_decorrelated() {
+        let a = SampleKey::new(10, 20, 3, 8, 42);
+        let b = SampleKey::new(10, 20, 3, 8, 42);
+        for i in 0..8 {
+            assert_eq!(
+                a.set_point(Method::Sobol, 0, i, 8),
+                b.set_point(Method::Sobol, 0, i, 8)
+            );
+            assert_eq!(
+                a.pixel_pattern(Method::Sobol, 1),
+                b.pixel_pattern(Method::Sobol, 1)
+            );
+        }
+        // Different pixels, seeds, lights (streams) and set dimensions give different points.
+        let p = a.set_point(Method::Sobol, 0, 0, 8);
+        assert_ne!(
+            p,
+            SampleKey::new(11, 20, 3, 8, 42).set_point(Method::Sobol, 0, 0, 8)
+        );
+        assert_ne!(
+            p,
+            SampleKey::new(10, 20, 3, 8, 43).set_point(Method::Sobol, 0, 0, 8)
+        );
+        assert_ne!(p, a.stream(1).set_point(Method::Sobol, 0, 0, 8));
+        assert_ne!(p, a.set_point(Method::Sobol, 1, 0, 8));
+        assert_ne!(
+            a.pixel_pattern(Method::Sobol, 0),
+            a.pixel_pattern(Method::Sobol, 1)
+        );
+        // Pixel (dimension 0) and lens (dimension 1) patterns are not paired up: over many
+        // pixels, the correlation of their x coordinates is near zero.
+        let n = 4096;
+        let (mut sxy, mut sx, mut sy, mut sxx, mut syy) = (0.0f64, 0.0, 0.0, 0.0, 0.0);
+        for k in 0..n {
+            let key = SampleKey::new(k % 64, k / 64, k % 16, 16, 1);
+            let (u, v) = (
+                key.pixel_pattern(Method::Sobol, 0).x as f64,
+                key.pixel_pattern(Method::Sobol, 1).x as f64,
+            );
+            (sx, sy, sxy, sxx, syy) = (sx + u, sy + v, sxy + u * v, sxx + u * u, syy + v * v);
+        }
+        let nf = n as f64;
+        let cov = sxy / nf - sx * sy / nf / nf;
+        let r = cov / ((sxx / nf - (sx / nf).powi(2)) * (syy / nf - (sy / nf).powi(2))).sqrt();
+        assert!(r.abs() < 0.05, "correlation {r}");
+        // Indices past the crate's 2^16 points still give valid, distinct points.
+        let far = sobol2(70_000, 9);
+        assert!((0.0..1.0).contains(&far.x) && far != sobol2(70_000 - (1 << 16), 9));
+        assert_eq!("sobol".parse::<Method>(), Ok(Method::Sobol));
+        assert_eq!(Method::Sobol.to_string(), "sobol");
     }
 
     #[test]

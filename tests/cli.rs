@@ -240,3 +240,100 @@ fn output_gets_ordinary_file_permissions() {
     let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
     assert_eq!(mode(&out_path), mode(&plain));
 }
+
+/// Ctrl-C during a render stops it without writing: exit status 130, the earlier image at the
+/// output path intact, no temporary files left.
+#[cfg(unix)]
+#[test]
+fn interrupt_leaves_the_output_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_path = dir.path().join("demo.png");
+    std::fs::write(&out_path, b"an earlier render").unwrap();
+    let child = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+        .arg(repo().join("scenes/demo.json"))
+        .arg(&out_path)
+        .args(["--spp", "64", "--quiet"])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(700));
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    assert!(stderr(&o).contains("no image written"));
+    assert_eq!(std::fs::read(&out_path).unwrap(), b"an earlier render");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+}
+
+/// `raytracer compare`: metrics on stdout, exit 0 within thresholds, 3 when worse, 1 for images
+/// that cannot be compared, 2 for usage errors; `--diff` writes a heat map.
+#[test]
+fn compare_reports_metrics_and_judges_thresholds() {
+    let (dir, scene) = write_scene(SMALL);
+    let a = dir.path().join("a.png");
+    let b = dir.path().join("b.png");
+    assert!(raytracer(&[&scene, &a, &"-q"]).status.success());
+    assert!(raytracer(&[&scene, &b, &"-q", &"--exposure", &"1.5"])
+        .status
+        .success());
+    let compare = |args: &[&dyn AsRef<std::ffi::OsStr>]| {
+        let mut all: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![&"compare"];
+        all.extend_from_slice(args);
+        raytracer(&all)
+    };
+    let same = compare(&[&a, &a]);
+    assert_eq!(same.status.code(), Some(0));
+    let out = String::from_utf8_lossy(&same.stdout).into_owned();
+    assert!(
+        out.contains("mse 0.000000e0") && out.contains("flip 0.000000"),
+        "{out}"
+    );
+
+    let diff = dir.path().join("diff.png");
+    let o = compare(&[&a, &b, &"--max-mse", &"1e-9", &"--diff", &diff]);
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--max-mse"));
+    assert!(raytracer::image_io::read_image(&diff).is_ok());
+    assert_eq!(
+        compare(&[&a, &b, &"--max-mse", &"1", &"--max-flip", &"1"])
+            .status
+            .code(),
+        Some(0)
+    );
+    assert_eq!(
+        compare(&[&a, &b, &"--region", &"0,0,4,4"]).status.code(),
+        Some(0)
+    );
+
+    let other = dir.path().join("other.png");
+    assert!(raytracer(&[&scene, &other, &"-q", &"--width", &"12"])
+        .status
+        .success());
+    let o = compare(&[&a, &other]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("differ in size"));
+    let o = compare(&[&a, &dir.path().join("missing.png")]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("missing.png"));
+    assert_eq!(
+        compare(&[&a, &b, &"--region", &"0,0,400,4"]).status.code(),
+        Some(1)
+    );
+    assert_eq!(
+        compare(&[&a, &b, &"--region", &"nonsense"]).status.code(),
+        Some(2)
+    );
+}
+
+#[test]
+fn output_inside_a_file_is_an_error() {
+    let (dir, scene) = write_scene(SMALL);
+    let out_path = dir.path().join("scene.json/out.png");
+    let o = raytracer(&[&scene, &out_path]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("out.png"));
+}

@@ -121,6 +121,9 @@ impl Accel {
     /// the same `t`, the least primitive index.
     #[inline]
     pub fn closest(&self, prims: &[Primitive], ray: &Ray, t_max: f32) -> Option<(u32, Candidate)> {
+        if t_max.is_nan() || t_max <= 0.0 {
+            return None;
+        }
         let r = PreparedRay::new(ray);
         match self {
             Accel::List => {
@@ -149,6 +152,9 @@ impl Accel {
         t_max: f32,
         blocks: impl Fn(u32) -> bool,
     ) -> bool {
+        if t_max.is_nan() || t_max <= 0.0 {
+            return false;
+        }
         let r = PreparedRay::new(ray);
         match self {
             Accel::List => prims

@@ -21,21 +21,21 @@ pub struct Triangle {
     pub face: u32,
 }
 
-/// Edge functions of the sheared, translated corners, in `f64` where the `f32` ones were exactly 0
-/// (the conservative fall-back of Woop et al. for rays through an edge or vertex).
+/// Edge functions of the sheared, translated corners. An edge function that is exactly 0 in
+/// `f32` (a ray through an edge or a vertex) is recomputed in `f64`, as Woop et al. do — but edge
+/// by edge: recomputing all three when one is zero (as pbrt-v4 does) changes a *shared* edge's
+/// value in one triangle and not in its neighbour, which opens a gap along that edge.
 #[inline]
 fn edge_functions(p0: Vec3, p1: Vec3, p2: Vec3) -> [f32; 3] {
-    let e = [
-        p1.x * p2.y - p1.y * p2.x,
-        p2.x * p0.y - p2.y * p0.x,
-        p0.x * p1.y - p0.y * p1.x,
-    ];
-    if e.contains(&0.0) {
-        let d = |a: Vec3, b: Vec3| (a.x as f64 * b.y as f64 - a.y as f64 * b.x as f64) as f32;
-        [d(p1, p2), d(p2, p0), d(p0, p1)]
-    } else {
-        e
-    }
+    let edge = |a: Vec3, b: Vec3| {
+        let e = a.x * b.y - a.y * b.x;
+        if e == 0.0 {
+            (a.x as f64 * b.y as f64 - a.y as f64 * b.x as f64) as f32
+        } else {
+            e
+        }
+    };
+    [edge(p1, p2), edge(p2, p0), edge(p0, p1)]
 }
 
 /// The body of the watertight test with the axis permutation `(KX, KY, KZ)`.
@@ -61,6 +61,9 @@ fn watertight<const KX: usize, const KY: usize, const KZ: usize>(
     if det == 0.0 || !det.is_finite() {
         return None;
     }
+    // Largest |z| before scaling: |Sx·z| and |Sy·z| are at most this (|d.z| is the largest
+    // component), which bounds the shear's error in x and y below.
+    let max_z = p0.z.abs().max(p1.z.abs()).max(p2.z.abs());
     p0.z *= sz;
     p1.z *= sz;
     p2.z *= sz;
@@ -77,13 +80,16 @@ fn watertight<const KX: usize, const KY: usize, const KZ: usize>(
         return None;
     }
     // Conservative lower bound on t (pbrt-v4 §6.8.4): reject hits that rounding could have
-    // placed on the wrong side of the origin.
+    // placed on the wrong side of the origin. pbrt bounds the error of the sheared x and y
+    // with the *scaled* z (≈ t), which is only comparable to x and y for unit directions;
+    // the unscaled |z| bounds |Sx·z| for any direction length, so short directions do not
+    // reject true hits on small triangles.
     let max_zt = p0.z.abs().max(p1.z.abs()).max(p2.z.abs());
     let delta_z = gamma(3) * max_zt;
     let max_xt = p0.x.abs().max(p1.x.abs()).max(p2.x.abs());
     let max_yt = p0.y.abs().max(p1.y.abs()).max(p2.y.abs());
-    let delta_x = gamma(5) * (max_xt + max_zt);
-    let delta_y = gamma(5) * (max_yt + max_zt);
+    let delta_x = gamma(5) * (max_xt + max_z);
+    let delta_y = gamma(5) * (max_yt + max_z);
     let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
     let max_e = e0.abs().max(e1.abs()).max(e2.abs());
     let delta_t =

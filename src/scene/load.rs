@@ -166,6 +166,16 @@ fn required<'a, 't>(node: &Node<'a, 't>, keys: &[&str]) -> Result<Node<'a, 't>, 
     })
 }
 
+/// The required number `key`, which must be > 0.
+fn positive(node: &Node, key: &str) -> Result<f32, SceneError> {
+    let n = required(node, &[key])?;
+    let v = n.f32()?;
+    if v <= 0.0 {
+        return Err(n.error(format!("the {key} must be > 0, found {v}")));
+    }
+    Ok(v)
+}
+
 fn opt_f32(node: &Node, keys: &[&str]) -> Result<Option<f32>, SceneError> {
     node.get_any(keys).map(|n| n.f32()).transpose()
 }
@@ -666,6 +676,7 @@ impl<'o> Loader<'o> {
             Some(n) => match n.str()?.to_ascii_lowercase().as_str() {
                 "random" | "uniform" => Method::Random,
                 "jittered" | "stratified" | "jitter" => Method::Jittered,
+                "sobol" => Method::Sobol,
                 other => {
                     self.warn(
                         &n,
@@ -681,10 +692,10 @@ impl<'o> Loader<'o> {
             Some(n) => n.u32()?.max(1),
             None => 4,
         };
-        // `jittered`: `samples` is the side of the grid; `random`: the total.
+        // `jittered`: `samples` is the side of the grid; `random` and `sobol`: the total.
         let total = match method {
             Method::Jittered => samples as u64 * samples as u64,
-            Method::Random => samples as u64,
+            Method::Random | Method::Sobol => samples as u64,
         };
         if total > self.options.max_light_samples as u64 {
             let n = samples_node.unwrap_or_else(|| l.clone());
@@ -741,11 +752,7 @@ impl<'o> Loader<'o> {
         match kind.as_str() {
             "sphere" | "uvsphere" => {
                 let center = required(s, &["center", "centre", "position"])?.vec3()?;
-                let rn = required(s, &["radius"])?;
-                let radius = rn.f32()?;
-                if radius <= 0.0 {
-                    return Err(rn.error(format!("the radius must be > 0, found {radius}")));
-                }
+                let radius = positive(s, "radius")?;
                 self.primitives.push(Primitive {
                     shape: Shape::Sphere(Sphere::new(center, radius, SPHERE_POLE, SPHERE_SEAM)),
                     material,
@@ -758,16 +765,8 @@ impl<'o> Loader<'o> {
                 if axis.length_squared() == 0.0 {
                     return Err(an.error("the axis must not be zero"));
                 }
-                let rn = required(s, &["radius"])?;
-                let radius = rn.f32()?;
-                if radius <= 0.0 {
-                    return Err(rn.error(format!("the radius must be > 0, found {radius}")));
-                }
-                let hn = required(s, &["height"])?;
-                let half = hn.f32()?;
-                if half <= 0.0 {
-                    return Err(hn.error(format!("the height must be > 0, found {half}")));
-                }
+                let radius = positive(s, "radius")?;
+                let half = positive(s, "height")?;
                 self.primitives.push(Primitive {
                     shape: Shape::Cylinder(Cylinder::new(center, axis, radius, half)),
                     material,
@@ -775,6 +774,9 @@ impl<'o> Loader<'o> {
             }
             "triangle" => {
                 let p = self.corners(s, 3)?;
+                if (p[1] - p[0]).cross(p[2] - p[0]) == Vec3::ZERO {
+                    return Err(s.error("the triangle has zero area (its corners are collinear)"));
+                }
                 let uv = self.corner_uvs(s, 3)?.unwrap_or_else(|| {
                     vec![
                         Vec2::new(0.0, 0.0),
@@ -802,7 +804,11 @@ impl<'o> Loader<'o> {
                 // Corners in "Z order" are put in cycle order; explicit uvs follow their corners,
                 // the default ones put image pixel (0,0) at v0 and the first row along v0→v1.
                 let order = cycle_order([p[0], p[1], p[2], p[3]]);
-                let p = order.iter().map(|&i| p[i]).collect();
+                let p: Vec<Vec3> = order.iter().map(|&i| p[i]).collect();
+                let area2 = (p[1] - p[0]).cross(p[2] - p[0]) + (p[2] - p[0]).cross(p[3] - p[0]);
+                if area2 == Vec3::ZERO {
+                    return Err(s.error("the quad has zero area (its corners are collinear)"));
+                }
                 let uv = match self.corner_uvs(s, 4)? {
                     Some(uv) => order.iter().map(|&i| uv[i]).collect(),
                     None => vec![
@@ -1053,6 +1059,9 @@ impl<'o> Loader<'o> {
             return Err(required(s, &["faces", "fs", "tris", "triangles"])
                 .err()
                 .unwrap_or_else(|| s.error("missing faces")));
+        }
+        if polygons.is_empty() {
+            return Err(s.error("the mesh has no faces"));
         }
         let mut faces = Vec::new();
         for (node, ids) in polygons {

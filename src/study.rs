@@ -1,0 +1,550 @@
+//! Sampler studies: image error against shadow-ray count and run time, for `raytracer study`.
+//!
+//! A study renders a scene once with many shadow rays (the reference), then with each sampler at a
+//! series of shadow-ray counts per area light, and records for each run its median render time,
+//! its MSE (whole image and an optional region, e.g. a penumbra) and its mean FLIP against the
+//! reference. Every run traces one ray through each pixel centre, so the only error left is that
+//! of the area-light estimate: the quantity the samplers differ in.
+//!
+//! The convergence rate is the slope of log MSE against log samples, fitted by least squares.
+//! For a smooth integrand independent samples give MSE ∝ n⁻¹; jittered (stratified) samples
+//! n⁻³ᐟ² for a discontinuous one in 2D such as a visibility edge (Mitchell, "Consequences of
+//! Stratified Sampling in Graphics", SIGGRAPH 1996); scrambled nets reach the same n⁻³ᐟ² on
+//! such edges (Owen, "Scrambled net variance for integrals of smooth functions", Ann. Stat.
+//! 1997, and Mitchell's analysis).
+
+use std::path::Path;
+
+use crate::film::Film;
+use crate::integrator::TraceOptions;
+use crate::metric::{mean_flip, mse, Region};
+use crate::render::{render, RenderOptions, RenderOutput};
+use crate::sampling::Method;
+use crate::scene::Scene;
+
+/// The samplers a study compares, in order.
+pub const SAMPLERS: [Method; 3] = [Method::Random, Method::Jittered, Method::Sobol];
+
+/// Fits use runs with at least this many samples: below it the stratified samplers have not
+/// reached their asymptotic rate (one or two samples cannot be stratified).
+pub const FIT_MIN_SAMPLES: u32 = 4;
+
+/// One render of a study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Run {
+    pub sampler: Method,
+    /// Shadow rays per area light per shading point.
+    pub samples: u32,
+    /// Median render time over the repetitions, seconds (BVH build excluded).
+    pub seconds: f64,
+    /// MSE of the whole image against the reference.
+    pub mse: f64,
+    /// MSE over the study's region (equal to `mse` without one).
+    pub mse_region: f64,
+    /// Mean FLIP of the whole image against the reference.
+    pub flip: f64,
+}
+
+/// What a study renders.
+#[derive(Debug, Clone)]
+pub struct StudyOptions {
+    pub samplers: Vec<Method>,
+    /// Largest shadow-ray count per area light.
+    pub max_samples: u32,
+    /// Renders per run; the time is their median.
+    pub runs: usize,
+    /// Region for `mse_region`; the whole image without one.
+    pub region: Option<Region>,
+    pub seed: u64,
+}
+
+impl Default for StudyOptions {
+    fn default() -> Self {
+        StudyOptions {
+            samplers: SAMPLERS.to_vec(),
+            max_samples: 256,
+            runs: 1,
+            region: None,
+            seed: 0,
+        }
+    }
+}
+
+/// The shadow-ray counts a sampler is run at: powers of 4 for jittered (full square grids),
+/// powers of 2 for the others, from 1 to `max`.
+pub fn sample_counts(method: Method, max: u32) -> Vec<u32> {
+    let step = if method == Method::Jittered { 4 } else { 2 };
+    std::iter::successors(Some(1u32), |&n| n.checked_mul(step))
+        .take_while(|&n| n <= max.max(1))
+        .collect()
+}
+
+/// Renders `scene` with one ray per pixel centre and every area light sampled with `method` at
+/// `samples` shadow rays (point lights are unchanged).
+pub fn render_with(scene: &Scene, method: Method, samples: u32, seed: u64) -> RenderOutput {
+    render(
+        scene,
+        &RenderOptions {
+            spp: 1,
+            pixel_method: method,
+            seed,
+            trace: TraceOptions {
+                light_method: Some(method),
+                light_samples: Some(samples),
+                ..TraceOptions::default()
+            },
+            ..RenderOptions::default()
+        },
+    )
+}
+
+/// The reference: jittered shadow rays on a `k×k` grid with `k² ≥ samples`, under a seed no run
+/// of a study uses.
+pub fn reference(scene: &Scene, samples: u32) -> Film {
+    let k = (samples.max(1) as f64).sqrt().ceil() as u32;
+    render_with(scene, Method::Jittered, k * k, 0x5eed_f4ef).film
+}
+
+/// The median of `v` (the mean of the middle two for an even length); 0 for none.
+pub fn median(v: &mut [f64]) -> f64 {
+    if v.is_empty() {
+        return 0.0;
+    }
+    v.sort_by(f64::total_cmp);
+    let m = v.len() / 2;
+    if v.len() % 2 == 1 {
+        v[m]
+    } else {
+        0.5 * (v[m - 1] + v[m])
+    }
+}
+
+/// Runs the study against `reference`, calling `progress(done, total, run)` after each run.
+pub fn run_study(
+    scene: &Scene,
+    reference: &Film,
+    options: &StudyOptions,
+    mut progress: impl FnMut(usize, usize, &Run),
+) -> Vec<Run> {
+    let plan: Vec<(Method, u32)> = options
+        .samplers
+        .iter()
+        .flat_map(|&m| {
+            sample_counts(m, options.max_samples)
+                .into_iter()
+                .map(move |n| (m, n))
+        })
+        .collect();
+    let full = Region::full(reference.width, reference.height);
+    let region = options.region.unwrap_or(full);
+    let mut out = Vec::with_capacity(plan.len());
+    for (i, &(sampler, samples)) in plan.iter().enumerate() {
+        let mut times = Vec::with_capacity(options.runs.max(1));
+        let mut film = None;
+        for _ in 0..options.runs.max(1) {
+            let r = render_with(scene, sampler, samples, options.seed);
+            times.push(r.render_time.as_secs_f64());
+            film = Some(r.film);
+        }
+        let film = film.expect("at least one render");
+        let run = Run {
+            sampler,
+            samples,
+            seconds: median(&mut times),
+            mse: mse(reference, &film, full),
+            mse_region: mse(reference, &film, region),
+            flip: mean_flip(reference, &film, full),
+        };
+        progress(i + 1, plan.len(), &run);
+        out.push(run);
+    }
+    out
+}
+
+/// The runs of one sampler, in sample order.
+pub fn runs_of(runs: &[Run], sampler: Method) -> Vec<&Run> {
+    let mut v: Vec<&Run> = runs.iter().filter(|r| r.sampler == sampler).collect();
+    v.sort_by_key(|r| r.samples);
+    v
+}
+
+/// Least-squares slope of `log y` against `log x` over the points with positive coordinates;
+/// `None` with fewer than two such points or all `x` equal.
+pub fn loglog_slope(points: &[(f64, f64)]) -> Option<f64> {
+    let p: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(x, y)| *x > 0.0 && *y > 0.0)
+        .map(|(x, y)| (x.ln(), y.ln()))
+        .collect();
+    if p.len() < 2 {
+        return None;
+    }
+    let n = p.len() as f64;
+    let mx = p.iter().map(|q| q.0).sum::<f64>() / n;
+    let my = p.iter().map(|q| q.1).sum::<f64>() / n;
+    let sxx: f64 = p.iter().map(|q| (q.0 - mx).powi(2)).sum();
+    let sxy: f64 = p.iter().map(|q| (q.0 - mx) * (q.1 - my)).sum();
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// The fitted slope of the region MSE against samples for one sampler, over runs with at least
+/// [`FIT_MIN_SAMPLES`] samples.
+pub fn mse_slope(runs: &[Run], sampler: Method) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = runs_of(runs, sampler)
+        .iter()
+        .filter(|r| r.samples >= FIT_MIN_SAMPLES)
+        .map(|r| (r.samples as f64, r.mse_region))
+        .collect();
+    loglog_slope(&pts)
+}
+
+/// The region MSE `sampler` reaches at `samples` (interpolated in log-log between the runs around
+/// it; `None` outside the runs).
+pub fn mse_at(runs: &[Run], sampler: Method, samples: u32) -> Option<f64> {
+    let v = runs_of(runs, sampler);
+    let pts: Vec<(f64, f64)> = v.iter().map(|r| (r.samples as f64, r.mse_region)).collect();
+    interpolate_loglog(&pts, samples as f64)
+}
+
+/// `y` at `x` on the polyline through `points` (sorted by `x`), interpolated linearly in
+/// `(log x, log y)`.
+fn interpolate_loglog(points: &[(f64, f64)], x: f64) -> Option<f64> {
+    points.windows(2).find_map(|w| {
+        let ((x0, y0), (x1, y1)) = (w[0], w[1]);
+        if x < x0.min(x1) || x > x0.max(x1) || x0 <= 0.0 || x1 <= 0.0 || y0 <= 0.0 || y1 <= 0.0 {
+            return None;
+        }
+        if x0 == x1 {
+            return Some(y0);
+        }
+        let t = (x.ln() - x0.ln()) / (x1.ln() - x0.ln());
+        Some((y0.ln() + t * (y1.ln() - y0.ln())).exp())
+    })
+}
+
+/// Render time `sampler` needs to bring the region MSE down to `target`: the first crossing of
+/// its MSE-against-time curve, interpolated in log-log. `None` if it never gets there; the first
+/// run's time if that is already at or below the target (an upper bound).
+pub fn time_to_reach(runs: &[Run], sampler: Method, target: f64) -> Option<f64> {
+    let v = runs_of(runs, sampler);
+    let first = v.first()?;
+    if first.mse_region <= target {
+        return Some(first.seconds);
+    }
+    v.windows(2).find_map(|w| {
+        let (a, b) = (w[0], w[1]);
+        if !(a.mse_region > target && b.mse_region <= target) {
+            return None;
+        }
+        let pts = [(a.mse_region, a.seconds), (b.mse_region, b.seconds)];
+        interpolate_loglog(&pts, target).or(Some(b.seconds))
+    })
+}
+
+/// Writes the runs as CSV: `sampler,samples,seconds,mse,mse_region,flip`.
+pub fn write_csv(path: &Path, runs: &[Run]) -> std::io::Result<()> {
+    let mut s = String::from("sampler,samples,seconds,mse,mse_region,flip\n");
+    for r in runs {
+        s.push_str(&format!(
+            "{},{},{:.6},{:.6e},{:.6e},{:.6}\n",
+            r.sampler, r.samples, r.seconds, r.mse, r.mse_region, r.flip
+        ));
+    }
+    std::fs::write(path, s)
+}
+
+/// The font the plots' text is drawn with, bundled so that no system font is needed (DejaVu Sans
+/// Mono, Bitstream Vera licence: `assets/fonts/DejaVu-LICENSE.txt`).
+static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSansMono.ttf");
+
+fn register_font() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let _ =
+            plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, FONT);
+    });
+}
+
+/// Colour of a sampler's line.
+fn colour(m: Method) -> plotters::style::RGBColor {
+    match m {
+        Method::Random => plotters::style::RGBColor(214, 39, 40),
+        Method::Jittered => plotters::style::RGBColor(31, 119, 180),
+        Method::Sobol => plotters::style::RGBColor(44, 160, 44),
+    }
+}
+
+/// Draws the log-log plot of the region MSE against samples (left) and against seconds (right),
+/// one line per sampler with its fitted slope in the legend, as a `width × height` RGB8 buffer.
+pub fn plot_rgb(runs: &[Run], title: &str, width: u32, height: u32) -> Result<Vec<u8>, String> {
+    use plotters::prelude::*;
+    register_font();
+    let mut buf = vec![255u8; (width * height * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (width, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let root = root
+            .titled(title, ("sans-serif", 18))
+            .map_err(|e| e.to_string())?;
+        let panels = root.split_evenly((1, 2));
+        let samplers: Vec<Method> = SAMPLERS
+            .into_iter()
+            .filter(|&m| runs.iter().any(|r| r.sampler == m))
+            .collect();
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        let ys: Vec<f64> = runs
+            .iter()
+            .map(|r| r.mse_region)
+            .filter(|&v| positive(v))
+            .collect();
+        let (ymin, ymax) = bounds(&ys);
+        for (panel, by_time) in panels.iter().zip([false, true]) {
+            let xs: Vec<f64> = runs
+                .iter()
+                .map(|r| if by_time { r.seconds } else { r.samples as f64 })
+                .filter(|&v| positive(v))
+                .collect();
+            let (xmin, xmax) = bounds(&xs);
+            let mut chart = ChartBuilder::on(panel)
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(70)
+                .caption(
+                    if by_time {
+                        "MSE vs render time"
+                    } else {
+                        "MSE vs shadow rays"
+                    },
+                    ("sans-serif", 16),
+                )
+                .build_cartesian_2d((xmin..xmax).log_scale(), (ymin..ymax).log_scale())
+                .map_err(|e| e.to_string())?;
+            chart
+                .configure_mesh()
+                .x_desc(if by_time {
+                    "seconds"
+                } else {
+                    "shadow rays per light"
+                })
+                .y_desc("MSE")
+                .x_label_formatter(&|v| tick(*v))
+                .y_label_formatter(&|v| tick(*v))
+                .label_style(("sans-serif", 12))
+                .draw()
+                .map_err(|e| e.to_string())?;
+            for &m in &samplers {
+                let c = colour(m);
+                let pts: Vec<(f64, f64)> = runs_of(runs, m)
+                    .iter()
+                    .map(|r| {
+                        (
+                            if by_time { r.seconds } else { r.samples as f64 },
+                            r.mse_region,
+                        )
+                    })
+                    .filter(|&(x, y)| positive(x) && positive(y))
+                    .collect();
+                let label = match mse_slope(runs, m) {
+                    Some(s) => format!("{m} (slope {s:.2})"),
+                    None => m.to_string(),
+                };
+                chart
+                    .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
+                    .map_err(|e| e.to_string())?
+                    .label(label)
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
+                    });
+                chart
+                    .draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))
+                    .map_err(|e| e.to_string())?;
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::LowerLeft)
+                .label_font(("sans-serif", 13))
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .draw()
+                .map_err(|e| e.to_string())?;
+        }
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(buf)
+}
+
+/// A log-axis tick label: only 1, 2 and 5 times a power of ten are written, so labels do not
+/// crowd.
+fn tick(v: f64) -> String {
+    if v <= 0.0 {
+        return String::new();
+    }
+    let e = v.log10().floor();
+    let m = v / 10f64.powf(e);
+    if [1.0, 2.0, 5.0].iter().any(|&k| (m - k).abs() < 1e-6 * k) {
+        if (-2.0..=4.0).contains(&e) {
+            format!("{v}")
+        } else {
+            format!("{m:.0}e{e}")
+        }
+    } else {
+        String::new()
+    }
+}
+
+/// Log-scale axis bounds around `v` with some room (a decade around 1 for no values).
+fn bounds(v: &[f64]) -> (f64, f64) {
+    let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = v.iter().copied().fold(0.0f64, f64::max);
+    if !lo.is_finite() || hi <= 0.0 {
+        return (0.1, 10.0);
+    }
+    let (lo, hi) = if lo == hi {
+        (lo / 2.0, hi * 2.0)
+    } else {
+        (lo, hi)
+    };
+    (lo / 1.5, hi * 1.5)
+}
+
+/// Writes the plot of [`plot_rgb`] as a PNG.
+pub fn write_plot(path: &Path, runs: &[Run], title: &str) -> Result<(), String> {
+    let (w, h) = (1200, 520);
+    let buf = plot_rgb(runs, title, w, h)?;
+    image::save_buffer_with_format(
+        path,
+        &buf,
+        w,
+        h,
+        image::ColorType::Rgb8,
+        image::ImageFormat::Png,
+    )
+    .map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
+/// One variant of a work-skipping comparison.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SkipRun {
+    pub name: &'static str,
+    /// Median render time, seconds.
+    pub seconds: f64,
+    /// Rays traced (all kinds).
+    pub rays: u64,
+    /// Mean FLIP against the plain render.
+    pub flip: f64,
+    /// MSE against the plain render.
+    pub mse: f64,
+}
+
+/// Renders `scene` with `base` plain, with adaptive area lights, with the POV-Ray cut-off at
+/// `cutoff`, and with both; returns each one's median time over `runs` and its error against
+/// the plain render.
+pub fn skip_work(scene: &Scene, base: &RenderOptions, cutoff: f32, runs: usize) -> Vec<SkipRun> {
+    let variants: [(&'static str, bool, Option<f32>); 4] = [
+        ("plain", false, None),
+        ("adaptive-lights", true, None),
+        ("adc-bailout", false, Some(cutoff)),
+        ("both", true, Some(cutoff)),
+    ];
+    let mut plain: Option<Film> = None;
+    let mut out = Vec::new();
+    for (name, adaptive, cut) in variants {
+        let options = RenderOptions {
+            trace: TraceOptions {
+                adaptive_lights: adaptive,
+                cutoff: cut,
+                ..base.trace
+            },
+            ..base.clone()
+        };
+        let mut times = Vec::new();
+        let mut last = None;
+        for _ in 0..runs.max(1) {
+            let r = render(scene, &options);
+            times.push(r.render_time.as_secs_f64());
+            last = Some(r);
+        }
+        let r = last.expect("at least one render");
+        let reference = plain.get_or_insert_with(|| r.film.clone());
+        let full = Region::full(r.film.width, r.film.height);
+        out.push(SkipRun {
+            name,
+            seconds: median(&mut times),
+            rays: r.counts.total(),
+            flip: mean_flip(reference, &r.film, full),
+            mse: mse(reference, &r.film, full),
+        });
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(sampler: Method, samples: u32, seconds: f64, e: f64) -> Run {
+        Run {
+            sampler,
+            samples,
+            seconds,
+            mse: e,
+            mse_region: e,
+            flip: 0.0,
+        }
+    }
+
+    #[test]
+    fn sample_series_are_powers() {
+        assert_eq!(sample_counts(Method::Jittered, 256), [1, 4, 16, 64, 256]);
+        assert_eq!(sample_counts(Method::Sobol, 16), [1, 2, 4, 8, 16]);
+        assert_eq!(sample_counts(Method::Random, 20), [1, 2, 4, 8, 16]);
+        assert_eq!(sample_counts(Method::Random, 0), [1]);
+    }
+
+    #[test]
+    fn slopes_and_crossings_of_exact_power_laws() {
+        // MSE = 0.1·n^-1.5, time = 0.01·n.
+        let runs: Vec<Run> = [1u32, 4, 16, 64, 256]
+            .iter()
+            .map(|&n| {
+                run(
+                    Method::Jittered,
+                    n,
+                    0.01 * n as f64,
+                    0.1 * (n as f64).powf(-1.5),
+                )
+            })
+            .collect();
+        assert!((mse_slope(&runs, Method::Jittered).unwrap() + 1.5).abs() < 1e-9);
+        // The MSE at 32 samples lies between the runs at 16 and 64.
+        let at32 = mse_at(&runs, Method::Jittered, 32).unwrap();
+        assert!((at32 / (0.1 * 32f64.powf(-1.5)) - 1.0).abs() < 1e-9);
+        // The time to reach the MSE of n = 32 is that of 32 samples.
+        let t = time_to_reach(&runs, Method::Jittered, at32).unwrap();
+        assert!((t - 0.32).abs() < 1e-9, "{t}");
+        assert_eq!(time_to_reach(&runs, Method::Jittered, 1e-12), None);
+        assert_eq!(time_to_reach(&runs, Method::Jittered, 1.0), Some(0.01));
+        assert_eq!(time_to_reach(&runs, Method::Sobol, 1.0), None);
+        assert_eq!(loglog_slope(&[(1.0, 1.0)]), None);
+        assert_eq!(median(&mut [3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(median(&mut [4.0, 1.0, 2.0, 3.0]), 2.5);
+    }
+
+    #[test]
+    fn the_plot_draws_text_and_lines() {
+        let runs: Vec<Run> = SAMPLERS
+            .iter()
+            .flat_map(|&m| {
+                [1u32, 4, 16]
+                    .map(|n| run(m, n, 0.001 * n as f64, 0.01 / n as f64))
+                    .to_vec()
+            })
+            .collect();
+        let buf = plot_rgb(&runs, "test", 600, 300).unwrap();
+        // Something other than white was drawn, including each sampler's colour.
+        let has = |c: plotters::style::RGBColor| buf.chunks_exact(3).any(|p| p == [c.0, c.1, c.2]);
+        for m in SAMPLERS {
+            assert!(has(colour(m)), "{m}");
+        }
+    }
+}

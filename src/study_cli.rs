@@ -1,0 +1,289 @@
+//! `raytracer study SCENE`: how fast each area-light sampler's error falls, per shadow ray and
+//! per second (library code in `raytracer::study`). Writes a CSV of the runs and a log-log plot,
+//! and prints the fitted slopes and the time each sampler needs to reach a target MSE.
+//! `--skip-work` instead times the work-skipping switches against a plain render.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::Parser;
+
+use raytracer::film::ToneMap;
+use raytracer::image_io::{read_image, write_image};
+use raytracer::integrator::DEFAULT_CUTOFF;
+use raytracer::metric::Region;
+use raytracer::render::RenderOptions;
+use raytracer::sampling::Method;
+use raytracer::scene::{load, LoadOptions};
+use raytracer::study::{self, StudyOptions};
+
+const EXIT_OK: u8 = 0;
+const EXIT_BAD_INPUT: u8 = 1;
+const EXIT_USAGE: u8 = 2;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "raytracer study",
+    about = "Compares the area-light samplers (random, jittered, sobol): MSE and FLIP against a reference per shadow-ray count and per second of render time.",
+    after_help = "Every run traces one ray per pixel centre and sets every area light's sampler and shadow-ray count. \
+                  Outputs: --csv (sampler,samples,seconds,mse,mse_region,flip), --plot (log-log PNG), the reference as EXR, and on stdout the fitted slopes and equal-error times."
+)]
+struct StudyCli {
+    /// The scene file.
+    scene: PathBuf,
+    /// Folder for the CSV, the plot and the reference image.
+    #[arg(long, default_value = "study")]
+    out: PathBuf,
+    /// CSV file to write (default OUT/study.csv).
+    #[arg(long)]
+    csv: Option<PathBuf>,
+    /// Plot to write (default OUT/study.png).
+    #[arg(long)]
+    plot: Option<PathBuf>,
+    /// Rectangle x,y,width,height (e.g. a penumbra) for the region MSE that the slopes, the
+    /// target and the plot use; the whole image without it.
+    #[arg(long)]
+    region: Option<Region>,
+    /// Renders per run; the reported time is their median.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=1000))]
+    runs: u64,
+    /// Largest shadow-ray count per area light.
+    #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    max_samples: u32,
+    /// Reference image (EXR keeps it linear) instead of rendering one.
+    #[arg(long)]
+    reference: Option<PathBuf>,
+    /// Shadow rays per area light for the rendered reference (jittered, rounded up to a square).
+    #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    reference_samples: u32,
+    /// Target MSE for the equal-error times (default: what random reaches at 256 samples, or at
+    /// its largest count if that is fewer).
+    #[arg(long)]
+    target_mse: Option<f64>,
+    /// Samplers to run, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "random,jittered,sobol")]
+    samplers: Vec<Method>,
+    /// Seed of the runs.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Override the image width (keeps the aspect ratio unless --height is also given).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    width: Option<u32>,
+    /// Override the image height.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    height: Option<u32>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// A fast smoke run: at most 16 samples, a 256-sample reference, 48 pixels wide.
+    #[arg(long)]
+    quick: bool,
+    /// Instead of the sampler study: time the scene plain, with --adaptive-lights, with
+    /// --adc-bailout and with both (its own samplers, --spp per pixel), and give each one's
+    /// mean FLIP against the plain render.
+    #[arg(long)]
+    skip_work: bool,
+    /// Samples per pixel for --skip-work.
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    spp: u32,
+    /// Cut-off for --skip-work's adc-bailout runs.
+    #[arg(long, default_value_t = DEFAULT_CUTOFF)]
+    adc_bailout: f32,
+}
+
+pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
+    let cli = match StudyCli::try_parse_from(args) {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { EXIT_USAGE } else { EXIT_OK };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    let pool = match rayon::ThreadPoolBuilder::new()
+        .num_threads(cli.threads.unwrap_or(0))
+        .build()
+    {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: cannot start worker threads: {e}");
+            return ExitCode::from(EXIT_BAD_INPUT);
+        }
+    };
+    let result = pool.install(|| {
+        if cli.skip_work {
+            skip_work(&cli)
+        } else {
+            run(&cli)
+        }
+    });
+    match result {
+        Ok(()) => ExitCode::from(EXIT_OK),
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            ExitCode::from(EXIT_BAD_INPUT)
+        }
+    }
+}
+
+fn load_scene(cli: &StudyCli) -> Result<raytracer::scene::Scene, String> {
+    let options = LoadOptions {
+        width: cli.width.or(if cli.quick { Some(48) } else { None }),
+        height: cli.height,
+        ..LoadOptions::default()
+    };
+    load(&cli.scene, &options).map_err(|e| e.to_string())
+}
+
+fn run(cli: &StudyCli) -> Result<(), String> {
+    let scene = load_scene(cli)?;
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    if let Some(r) = cli.region {
+        if !r.fits(w, h) {
+            return Err(format!(
+                "the region {},{},{},{} does not fit the {w}×{h} image",
+                r.x, r.y, r.width, r.height
+            ));
+        }
+    }
+    std::fs::create_dir_all(&cli.out)
+        .map_err(|e| format!("cannot create {}: {e}", cli.out.display()))?;
+    let csv = cli.csv.clone().unwrap_or(cli.out.join("study.csv"));
+    let plot = cli.plot.clone().unwrap_or(cli.out.join("study.png"));
+
+    let reference = match &cli.reference {
+        Some(path) => {
+            let f = read_image(path).map_err(|e| e.to_string())?;
+            if (f.width, f.height) != (w, h) {
+                return Err(format!(
+                    "the reference {} is {}×{}, the scene renders {w}×{h}",
+                    path.display(),
+                    f.width,
+                    f.height
+                ));
+            }
+            f
+        }
+        None => {
+            let n = if cli.quick {
+                cli.reference_samples.min(256)
+            } else {
+                cli.reference_samples
+            };
+            eprintln!("study: reference, jittered, {n} shadow rays per area light, {w}×{h} …");
+            let t = Instant::now();
+            let f = study::reference(&scene, n);
+            eprintln!("study: reference took {:.2} s", t.elapsed().as_secs_f64());
+            let path = cli.out.join("reference.exr");
+            write_image(&path, &f, ToneMap::Linear, 1.0).map_err(|e| e.to_string())?;
+            f
+        }
+    };
+
+    let options = StudyOptions {
+        samplers: cli.samplers.clone(),
+        max_samples: if cli.quick {
+            cli.max_samples.min(16)
+        } else {
+            cli.max_samples
+        },
+        runs: cli.runs as usize,
+        region: cli.region,
+        seed: cli.seed,
+    };
+    let runs = study::run_study(&scene, &reference, &options, |i, n, r| {
+        eprintln!(
+            "study: [{i}/{n}] {:<8} {:>5} rays  {:.4} s  MSE {:.3e}  region {:.3e}  FLIP {:.4}",
+            r.sampler.to_string(),
+            r.samples,
+            r.seconds,
+            r.mse,
+            r.mse_region,
+            r.flip
+        );
+    });
+    study::write_csv(&csv, &runs).map_err(|e| format!("cannot write {}: {e}", csv.display()))?;
+    let name = cli
+        .scene
+        .file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let what = match cli.region {
+        Some(r) => format!("region {},{},{},{}", r.x, r.y, r.width, r.height),
+        None => "whole image".into(),
+    };
+    study::write_plot(&plot, &runs, &format!("{name}: {what}, {w}×{h}"))?;
+
+    println!(
+        "MSE over the {what}; slopes fitted over runs with ≥ {} shadow rays",
+        study::FIT_MIN_SAMPLES
+    );
+    println!("{:<10} {:>8}", "sampler", "slope");
+    for &m in &options.samplers {
+        match study::mse_slope(&runs, m) {
+            Some(s) => println!("{:<10} {s:>8.3}", m.to_string()),
+            None => println!("{:<10} {:>8}", m.to_string(), "-"),
+        }
+    }
+    let target = cli.target_mse.or_else(|| {
+        let rs = study::runs_of(&runs, Method::Random);
+        let at = rs.iter().rev().find(|r| r.samples <= 256)?;
+        Some(at.mse_region)
+    });
+    match target {
+        None => println!("no target MSE: give --target-mse or include random"),
+        Some(target) => {
+            println!("time to reach MSE {target:.3e}:");
+            let base = study::time_to_reach(&runs, Method::Random, target);
+            for &m in &options.samplers {
+                match study::time_to_reach(&runs, m, target) {
+                    Some(t) => {
+                        let ratio = base
+                            .map(|b| format!("  ({:.3}× random)", t / b))
+                            .unwrap_or_default();
+                        println!("{:<10} {t:>10.4} s{ratio}", m.to_string());
+                    }
+                    None => println!("{:<10} {:>10}", m.to_string(), "not reached"),
+                }
+            }
+        }
+    }
+    eprintln!("study: wrote {} and {}", csv.display(), plot.display());
+    Ok(())
+}
+
+fn skip_work(cli: &StudyCli) -> Result<(), String> {
+    let scene = load_scene(cli)?;
+    let base = RenderOptions {
+        spp: cli.spp,
+        seed: cli.seed,
+        ..RenderOptions::default()
+    };
+    eprintln!(
+        "study: {} at {}×{}, {} spp, {} run(s) each …",
+        cli.scene.display(),
+        scene.camera.width,
+        scene.camera.height,
+        cli.spp,
+        cli.runs
+    );
+    let rows = study::skip_work(&scene, &base, cli.adc_bailout, cli.runs as usize);
+    let plain = rows[0].seconds;
+    println!(
+        "{:<16} {:>9} {:>8} {:>12} {:>10} {:>11}",
+        "variant", "seconds", "speed-up", "rays", "FLIP", "MSE"
+    );
+    for r in &rows {
+        println!(
+            "{:<16} {:>9.4} {:>7.2}× {:>12} {:>10.5} {:>11.3e}",
+            r.name,
+            r.seconds,
+            plain / r.seconds.max(1e-12),
+            r.rays,
+            r.flip,
+            r.mse
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,180 @@
+//! Samplers and the study command: the Sobol sampler and the light overrides keep renders
+//! deterministic, the work-skipping switches change nothing unless asked for, and a quick study
+//! writes the expected CSV rows and a PNG plot. No timing is asserted.
+
+mod common;
+
+use std::process::Command;
+
+use common::repo;
+use raytracer::integrator::{TraceOptions, DEFAULT_CUTOFF};
+use raytracer::metric::{mean_flip, Region};
+use raytracer::render::{render, RenderOptions};
+use raytracer::sampling::Method;
+use raytracer::scene::{load, LoadOptions, Scene};
+
+fn penumbra(width: u32) -> Scene {
+    let options = LoadOptions {
+        width: Some(width),
+        ..Default::default()
+    };
+    load(&repo().join("scenes/penumbra.json"), &options).unwrap()
+}
+
+fn with_trace(trace: TraceOptions) -> RenderOptions {
+    RenderOptions {
+        spp: 2,
+        trace,
+        ..Default::default()
+    }
+}
+
+#[test]
+fn sobol_renders_are_identical_on_any_thread_count() {
+    let scene = penumbra(48);
+    let options = RenderOptions {
+        pixel_method: Method::Sobol,
+        ..with_trace(TraceOptions {
+            light_method: Some(Method::Sobol),
+            light_samples: Some(16),
+            ..Default::default()
+        })
+    };
+    let on = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| render(&scene, &options).film)
+    };
+    let (one, two) = (on(1), on(2));
+    assert!(one.pixels == two.pixels);
+    // And it differs from the scene's own jittered sampling, yet agrees with it closely.
+    let own = render(&scene, &with_trace(TraceOptions::default())).film;
+    assert!(own.pixels != one.pixels);
+    let flip = mean_flip(&own, &one, Region::full(48, 36));
+    assert!(flip < 0.05, "{flip}");
+}
+
+#[test]
+fn overrides_that_restate_the_scene_change_no_pixel() {
+    // penumbra.json's light is jittered with 4×4 = 16 samples.
+    let scene = penumbra(48);
+    let own = render(&scene, &with_trace(TraceOptions::default())).film;
+    let restated = render(
+        &scene,
+        &with_trace(TraceOptions {
+            light_method: Some(Method::Jittered),
+            light_samples: Some(16),
+            ..Default::default()
+        }),
+    )
+    .film;
+    assert!(own.pixels == restated.pixels);
+}
+
+#[test]
+fn work_skipping_stays_close_to_the_plain_render() {
+    let scene = penumbra(64);
+    let plain = render(&scene, &with_trace(TraceOptions::default()));
+    let adaptive = render(
+        &scene,
+        &with_trace(TraceOptions {
+            adaptive_lights: true,
+            ..Default::default()
+        }),
+    );
+    // Fewer shadow rays, nearly the same image (the occluders here are larger than the gaps
+    // between the probes' rays).
+    assert!(adaptive.counts.shadow < plain.counts.shadow);
+    let r = Region::full(64, 48);
+    let flip = mean_flip(&plain.film, &adaptive.film, r);
+    assert!(flip < 0.01, "{flip}");
+    // No reflective or refractive surface: the cut-off changes nothing.
+    let cut = render(
+        &scene,
+        &with_trace(TraceOptions {
+            cutoff: Some(DEFAULT_CUTOFF),
+            ..Default::default()
+        }),
+    );
+    assert!(cut.film.pixels == plain.film.pixels);
+}
+
+#[test]
+fn the_cutoff_prunes_weak_branches_of_glass() {
+    let scene = load(
+        &repo().join("scenes/glass.json"),
+        &LoadOptions {
+            width: Some(64),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let plain = render(&scene, &with_trace(TraceOptions::default()));
+    let cut = render(
+        &scene,
+        &with_trace(TraceOptions {
+            cutoff: Some(DEFAULT_CUTOFF),
+            ..Default::default()
+        }),
+    );
+    assert!(cut.counts.secondary <= plain.counts.secondary);
+    let r = Region::full(plain.film.width, plain.film.height);
+    let flip = mean_flip(&plain.film, &cut.film, r);
+    assert!(flip < 0.01, "{flip}");
+}
+
+#[test]
+fn quick_study_writes_the_csv_rows_and_a_png_plot() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+        .arg("study")
+        .arg(repo().join("scenes/penumbra.json"))
+        .arg("--quick")
+        .arg("--out")
+        .arg(dir.path())
+        .args(["--region", "8,8,24,16", "--width", "40"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("[13/13]"), "no progress: {stderr}");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    for m in ["random", "jittered", "sobol"] {
+        assert!(stdout.lines().any(|l| l.starts_with(m)), "{stdout}");
+    }
+    assert!(stdout.contains("time to reach MSE"), "{stdout}");
+
+    let csv = std::fs::read_to_string(dir.path().join("study.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some("sampler,samples,seconds,mse,mse_region,flip")
+    );
+    let rows: Vec<(String, u32)> = lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            assert_eq!(f.len(), 6, "{l}");
+            for v in &f[2..] {
+                let x: f64 = v.parse().unwrap();
+                assert!(x.is_finite() && x >= 0.0, "{l}");
+            }
+            (f[0].to_string(), f[1].parse().unwrap())
+        })
+        .collect();
+    let expected: Vec<(String, u32)> = [
+        ("random", [1, 2, 4, 8, 16].as_slice()),
+        ("jittered", [1, 4, 16].as_slice()),
+        ("sobol", [1, 2, 4, 8, 16].as_slice()),
+    ]
+    .iter()
+    .flat_map(|(m, ns)| ns.iter().map(move |&n| (m.to_string(), n)))
+    .collect();
+    assert_eq!(rows, expected);
+
+    let plot = image::open(dir.path().join("study.png")).unwrap();
+    assert_eq!((plot.width(), plot.height()), (1200, 520));
+    let reference = raytracer::image_io::read_image(&dir.path().join("reference.exr")).unwrap();
+    assert_eq!((reference.width, reference.height), (40, 30));
+}
