@@ -76,6 +76,13 @@ impl std::str::FromStr for AccelKind {
 }
 
 /// Below this many primitives `auto` tests them all: a BVH's node tests cost more than they save.
+///
+/// Measured with `raytracer bench --crossover --runs 21`, which times the ray queries (camera rays
+/// at 320×240, shadow rays, random secondary rays; one thread, medians) with `none` and `sah` on
+/// scenes of 1 to 64 random spheres and triangles. Scattered in space, the tree was never slower
+/// (its root box rejects the rays that miss everything). In front of a quad filling the view, so
+/// that every ray hits, the list was up to 1.2× faster from 3 to 6 primitives, they tied at 7, and
+/// the tree won from 8 on (0.91× the list's time at 8, 0.73× at 12, 0.27× at 64).
 pub const AUTO_MIN_PRIMITIVES: usize = 8;
 
 /// The built accelerator.
