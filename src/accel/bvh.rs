@@ -1,6 +1,6 @@
 //! A bounding volume hierarchy over primitives, flattened into an array of 32-byte nodes. The two
 //! children of an interior node are stored together, interleaved in one 64-byte cache line
-//! ([`NodePair`]), so a traversal step tests both boxes at once in SIMD lanes and visits the nearer
+//! (`NodePair`), so a traversal step tests both boxes at once in SIMD lanes and visits the nearer
 //! first; pairs are laid out depth-first.
 //!
 //! Two builders, both over individual primitives (a mesh is already one primitive per triangle):
@@ -27,7 +27,7 @@ use crate::math::next_float_up;
 use crate::ray::PreparedRay;
 
 /// Traversal stack entries. The builders keep every tree at most `MAX_SAH_DEPTH + 33` levels deep
-/// (see [`MAX_SAH_DEPTH`]), and a traversal holds at most one entry per level.
+/// (see `MAX_SAH_DEPTH`), and a traversal holds at most one entry per level.
 pub const STACK_SIZE: usize = 128;
 
 /// Depth below which the SAH builder switches to median splits. A median split halves a node, so
