@@ -142,7 +142,7 @@ fn tonemap_channel(x: f32, map: ToneMap, exposure: f32) -> f32 {
     .clamp(0.0, 1.0)
 }
 
-/// Maps one linear radiance value to display [0,1]: first multiplies by `exposure`, then
+/// Maps one linear radiance value to display \[0, 1\]: first multiplies by `exposure`, then
 /// Linear: clamp(x,0,1) (the coursework's official mapping: value × 255, clamped, no gamma);
 /// Srgb: the sRGB transfer curve (IEC 61966-2-1) of clamp(x,0,1);
 /// Reinhard: x/(1+x) per channel, then the sRGB curve.
@@ -163,7 +163,7 @@ fn to_byte(v: f32, map: ToneMap) -> u8 {
     (v * 255.0 + bias).floor().clamp(0.0, 255.0) as u8
 }
 
-/// 8-bit RGB bytes of the film (see [`to_byte`] for the quantisation):
+/// 8-bit RGB bytes of the film (see `to_byte` for the quantisation):
 /// `3 * width * height` bytes, row-major from the top row, R, G, B per pixel.
 pub fn to_rgb8(film: &Film, map: ToneMap, exposure: f32) -> Vec<u8> {
     let mut out = Vec::with_capacity(film.pixels.len() * 3);

@@ -22,7 +22,7 @@ pub struct Texture {
     pub width: u32,
     /// Height in texels.
     pub height: u32,
-    /// `width * height` texels, row-major, row 0 = top of the image; values in [0,1] = byte/255,
+    /// `width * height` texels, row-major, row 0 = top of the image; values in \[0, 1\] = byte/255,
     /// no gamma decoding.
     pub texels: Vec<Vec3>,
 }

@@ -1,6 +1,6 @@
 //! The scene: everything the renderer needs, converted from the JSON file and checked.
 //!
-//! [`load`] reads a scene file in any of the coursework variants (see `docs/scene-format.md`);
+//! [`load()`] reads a scene file in any of the coursework variants (see `docs/scene-format.md`);
 //! the result is immutable and shared by all render threads.
 
 pub mod error;
