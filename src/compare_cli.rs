@@ -11,14 +11,7 @@ use raytracer::film::ToneMap;
 use raytracer::image_io::{read_image, write_image};
 use raytracer::metric::{flip_map, heat_map, mse, psnr, Region};
 
-/// Exit status: within the thresholds.
-const EXIT_OK: u8 = 0;
-/// Exit status: an image cannot be read, or the sizes or the region do not fit.
-const EXIT_BAD_INPUT: u8 = 1;
-/// Exit status: the command line is wrong.
-const EXIT_USAGE: u8 = 2;
-/// Exit status: the test image is worse than a threshold.
-const EXIT_WORSE: u8 = 3;
+use crate::exit_code;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -50,16 +43,24 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     let cli = match CompareCli::try_parse_from(args) {
         Ok(c) => c,
         Err(e) => {
-            let code = if e.use_stderr() { EXIT_USAGE } else { EXIT_OK };
+            let code = if e.use_stderr() {
+                exit_code::USAGE
+            } else {
+                exit_code::OK
+            };
             let _ = e.print();
             return ExitCode::from(code);
         }
     };
     match run(&cli) {
-        Ok(worse) => ExitCode::from(if worse { EXIT_WORSE } else { EXIT_OK }),
+        Ok(worse) => ExitCode::from(if worse {
+            exit_code::WORSE
+        } else {
+            exit_code::OK
+        }),
         Err(msg) => {
             eprintln!("error: {msg}");
-            ExitCode::from(EXIT_BAD_INPUT)
+            ExitCode::from(exit_code::BAD_INPUT)
         }
     }
 }

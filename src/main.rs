@@ -17,16 +17,8 @@ use raytracer::scene::{load, LoadOptions};
 
 mod bench_cli;
 mod compare_cli;
+mod exit_code;
 mod study_cli;
-
-/// Exit status: the image was written.
-const EXIT_OK: u8 = 0;
-/// Exit status: the scene or an asset is bad, or the output could not be written.
-const EXIT_BAD_INPUT: u8 = 1;
-/// Exit status: the command line is wrong.
-const EXIT_USAGE: u8 = 2;
-/// Exit status: interrupted (128 + SIGINT, as shells report it); nothing was written.
-const EXIT_INTERRUPTED: u8 = 130;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -121,24 +113,28 @@ fn main() -> ExitCode {
     let cli = match Cli::try_parse_from(&args) {
         Ok(c) => c,
         Err(e) => {
-            let code = if e.use_stderr() { EXIT_USAGE } else { EXIT_OK };
+            let code = if e.use_stderr() {
+                exit_code::USAGE
+            } else {
+                exit_code::OK
+            };
             let _ = e.print();
             return ExitCode::from(code);
         }
     };
     match run(&cli) {
-        Ok(()) => ExitCode::from(EXIT_OK),
+        Ok(()) => ExitCode::from(exit_code::OK),
         Err(Failure::Usage(msg)) => {
             eprintln!("error: {msg}");
-            ExitCode::from(EXIT_USAGE)
+            ExitCode::from(exit_code::USAGE)
         }
         Err(Failure::Input(e)) => {
             eprintln!("error: {e:#}");
-            ExitCode::from(EXIT_BAD_INPUT)
+            ExitCode::from(exit_code::BAD_INPUT)
         }
         Err(Failure::Interrupted) => {
             eprintln!("interrupted: no image written");
-            ExitCode::from(EXIT_INTERRUPTED)
+            ExitCode::from(exit_code::INTERRUPTED)
         }
     }
 }

@@ -18,9 +18,7 @@ use raytracer::sampling::Method;
 use raytracer::scene::{load, LoadOptions};
 use raytracer::study::{self, StudyOptions};
 
-const EXIT_OK: u8 = 0;
-const EXIT_BAD_INPUT: u8 = 1;
-const EXIT_USAGE: u8 = 2;
+use crate::exit_code;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -96,7 +94,11 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     let cli = match StudyCli::try_parse_from(args) {
         Ok(c) => c,
         Err(e) => {
-            let code = if e.use_stderr() { EXIT_USAGE } else { EXIT_OK };
+            let code = if e.use_stderr() {
+                exit_code::USAGE
+            } else {
+                exit_code::OK
+            };
             let _ = e.print();
             return ExitCode::from(code);
         }
@@ -108,7 +110,7 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
         Ok(p) => p,
         Err(e) => {
             eprintln!("error: cannot start worker threads: {e}");
-            return ExitCode::from(EXIT_BAD_INPUT);
+            return ExitCode::from(exit_code::BAD_INPUT);
         }
     };
     let result = pool.install(|| {
@@ -119,10 +121,10 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
         }
     });
     match result {
-        Ok(()) => ExitCode::from(EXIT_OK),
+        Ok(()) => ExitCode::from(exit_code::OK),
         Err(msg) => {
             eprintln!("error: {msg}");
-            ExitCode::from(EXIT_BAD_INPUT)
+            ExitCode::from(exit_code::BAD_INPUT)
         }
     }
 }
