@@ -1012,12 +1012,14 @@ impl<'o> Loader<'o> {
         if let (Some(sizes), Some(flat)) = (s.get("faceindex"), s.get("vertexindex")) {
             let idx = flat.numbers()?;
             let mut at = 0usize;
-            for (k, n) in sizes.numbers()?.into_iter().enumerate() {
-                let n = n.max(0.0) as usize;
-                if at + n > idx.len() {
+            for (k, size) in sizes.numbers()?.into_iter().enumerate() {
+                // `at + n` could overflow for a huge size (1e30 saturates to usize::MAX), so the
+                // size is compared with what is left; `at <= idx.len()` holds on every pass.
+                let n = size.max(0.0) as usize;
+                let left = idx.len() - at;
+                if n > left {
                     return Err(sizes.error(format!(
-                        "face {k} needs {n} indices but 'vertexindex' has only {} left",
-                        idx.len() - at
+                        "face {k} needs {size} indices but 'vertexindex' has only {left} left"
                     )));
                 }
                 let ids = idx[at..at + n]
@@ -1428,4 +1430,30 @@ fn box_mesh(lo: Vec3, hi: Vec3) -> (Vec<Vec3>, Vec<[u32; 3]>) {
         .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
         .collect();
     (p, faces)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn load_text(text: &str) -> Result<Scene, SceneError> {
+        load_str(text, Path::new("t.json"), &LoadOptions::default())
+    }
+
+    #[test]
+    fn a_huge_face_size_is_an_error_not_an_overflow() {
+        let text = r#"{"camera": {"width": 4, "height": 4, "fov": 45},
+            "shapes": [{"type": "trimesh", "vertices": [[0,0,0], [1,0,0], [0,1,0]],
+                        "vertexindex": [0, 1, 2], "faceindex": [3, 1e30]}]}"#;
+        let e = load_text(text)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            e.starts_with("t.json:")
+                && e.contains("face 1 needs 1000000000000000000000000000000 indices")
+                && e.contains("0 left"),
+            "{e}"
+        );
+    }
 }
