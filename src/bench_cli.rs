@@ -14,6 +14,8 @@ use raytracer::bench::{
     table1, throughput, TableOptions, Throughput, TABLE_HEADER,
 };
 
+use crate::exit_code;
+
 #[derive(Parser, Debug)]
 #[command(
     name = "raytracer bench",
@@ -59,17 +61,13 @@ struct BenchCli {
 }
 
 pub fn main(args: &[OsString]) -> ExitCode {
-    let cli = match BenchCli::try_parse_from(args) {
+    let cli = match exit_code::parse::<BenchCli>(args) {
         Ok(c) => c,
-        Err(e) => {
-            let code = if e.use_stderr() { 2 } else { 0 };
-            let _ = e.print();
-            return ExitCode::from(code);
-        }
+        Err(code) => return code,
     };
     if !(cli.none_limit >= 0.0 && cli.none_limit.is_finite()) {
         eprintln!("error: --none-limit must be a finite number of seconds, at least 0");
-        return ExitCode::from(2);
+        return ExitCode::from(exit_code::USAGE);
     }
     let pool = match rayon::ThreadPoolBuilder::new()
         .num_threads(cli.threads.unwrap_or(0) as usize)
@@ -78,14 +76,14 @@ pub fn main(args: &[OsString]) -> ExitCode {
         Ok(p) => p,
         Err(e) => {
             eprintln!("error: cannot start worker threads: {e}");
-            return ExitCode::from(1);
+            return ExitCode::from(exit_code::BAD_INPUT);
         }
     };
     match pool.install(|| run(&cli)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
-            ExitCode::from(1)
+            ExitCode::from(exit_code::BAD_INPUT)
         }
     }
 }

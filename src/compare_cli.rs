@@ -40,17 +40,9 @@ struct CompareCli {
 }
 
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
-    let cli = match CompareCli::try_parse_from(args) {
+    let cli = match exit_code::parse::<CompareCli>(args) {
         Ok(c) => c,
-        Err(e) => {
-            let code = if e.use_stderr() {
-                exit_code::USAGE
-            } else {
-                exit_code::OK
-            };
-            let _ = e.print();
-            return ExitCode::from(code);
-        }
+        Err(code) => return code,
     };
     match run(&cli) {
         Ok(worse) => ExitCode::from(if worse {

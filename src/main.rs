@@ -110,17 +110,9 @@ fn main() -> ExitCode {
     if args.get(1).is_some_and(|a| a == "study") {
         return study_cli::main(&args[1..]);
     }
-    let cli = match Cli::try_parse_from(&args) {
+    let cli = match exit_code::parse::<Cli>(&args) {
         Ok(c) => c,
-        Err(e) => {
-            let code = if e.use_stderr() {
-                exit_code::USAGE
-            } else {
-                exit_code::OK
-            };
-            let _ = e.print();
-            return ExitCode::from(code);
-        }
+        Err(code) => return code,
     };
     match run(&cli) {
         Ok(()) => ExitCode::from(exit_code::OK),

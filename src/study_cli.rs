@@ -91,17 +91,9 @@ struct StudyCli {
 }
 
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
-    let cli = match StudyCli::try_parse_from(args) {
+    let cli = match exit_code::parse::<StudyCli>(args) {
         Ok(c) => c,
-        Err(e) => {
-            let code = if e.use_stderr() {
-                exit_code::USAGE
-            } else {
-                exit_code::OK
-            };
-            let _ = e.print();
-            return ExitCode::from(code);
-        }
+        Err(code) => return code,
     };
     let pool = match rayon::ThreadPoolBuilder::new()
         .num_threads(cli.threads.unwrap_or(0))
