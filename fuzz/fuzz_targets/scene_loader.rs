@@ -21,9 +21,7 @@ use raytracer::film::{to_rgb8, ToneMap};
 use raytracer::render::{render, RenderOptions};
 use raytracer::scene::{load, load_str, LoadOptions};
 
-/// Small limits, so that one input renders in milliseconds. Bundled scenes over them (a 16×16
-/// jittered light) fail with the limit error, which is worth fuzzing too; their mutations under
-/// them render.
+/// Small limits, so that one input renders in milliseconds; every bundled scene fits them.
 fn options() -> LoadOptions {
     LoadOptions {
         width: Some(4),
