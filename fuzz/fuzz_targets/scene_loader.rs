@@ -96,7 +96,7 @@ fuzz_target!(|data: &[u8]| {
     // Vary the sampling and the accelerator a little with the input.
     let render_options = RenderOptions {
         spp: 1 + (data.len() % 2) as u32,
-        accel: if data.len() % 3 == 0 {
+        accel: if data.len().is_multiple_of(3) {
             AccelKind::None
         } else {
             AccelKind::Auto
