@@ -1008,6 +1008,10 @@ impl<'o> Loader<'o> {
             }
             Ok(i as u32)
         };
+        // One face written as a list of vertex indices.
+        let indices = |f: &Node| -> Result<Vec<u32>, SceneError> {
+            f.numbers()?.into_iter().map(|i| check(f, i)).collect()
+        };
         let mut polygons: Vec<(Node, Vec<u32>)> = Vec::new();
         if let (Some(sizes), Some(flat)) = (s.get("faceindex"), s.get("vertexindex")) {
             let idx = flat.numbers()?;
@@ -1032,20 +1036,12 @@ impl<'o> Loader<'o> {
         } else if let Some(count) = s.get("face").filter(|n| n.u32().is_ok()) {
             for i in 0..count.u32()? {
                 let f = required(s, &[&format!("f{i}")])?;
-                let ids = f
-                    .numbers()?
-                    .into_iter()
-                    .map(|i| check(&f, i))
-                    .collect::<Result<_, _>>()?;
+                let ids = indices(&f)?;
                 polygons.push((f, ids));
             }
         } else if let Some(fnode) = s.get_any(&["faces", "fs", "tris", "triangles", "face"]) {
             for f in fnode.elements()? {
-                let ids = f
-                    .numbers()?
-                    .into_iter()
-                    .map(|i| check(&f, i))
-                    .collect::<Result<_, _>>()?;
+                let ids = indices(&f)?;
                 polygons.push((f, ids));
             }
         } else if vn.path.ends_with("points") && !positions.is_empty() {
