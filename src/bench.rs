@@ -4,6 +4,7 @@
 //! Everything here is deterministic except the timings: scenes and rays are pure functions of
 //! their parameters (random numbers come from [`crate::sampling`]'s hashes).
 
+use crate::files::shown;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -147,6 +148,7 @@ pub fn sphere_grid(g: u32, s: u32, width: u32, height: u32) -> Scene {
         meshes,
         has_transmissive: false,
         warnings: Vec::new(),
+        inputs: Vec::new(),
     }
 }
 
@@ -390,7 +392,7 @@ pub fn table_scene(which: &TableScene, options: &TableOptions) -> Result<Scene, 
                 width: options.quick.then_some(w),
                 ..LoadOptions::default()
             };
-            load(&path, &load_options).map_err(|e| format!("{}: {e}", path.display()))
+            load(&path, &load_options).map_err(|e| format!("{}: {e}", shown(&path)))
         }
     }
 }
@@ -862,6 +864,7 @@ pub fn random_scene(n: usize, width: u32, height: u32, backdrop: bool) -> Scene 
         meshes,
         has_transmissive: false,
         warnings: Vec::new(),
+        inputs: Vec::new(),
     }
 }
 

@@ -1,5 +1,6 @@
 //! `raytracer bench`: the command line of the benchmarks in [`raytracer::bench`].
 
+use raytracer::files::shown;
 use std::ffi::OsString;
 use std::io::Write;
 use std::path::PathBuf;
@@ -172,7 +173,7 @@ fn run(cli: &BenchCli) -> Result<(), String> {
     std::io::stdout().flush().map_err(|e| e.to_string())?;
     if let Some(path) = &cli.csv {
         std::fs::write(path, format_csv(&header, &rows))
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            .map_err(|e| format!("cannot write {}: {e}", shown(path)))?;
     }
     Ok(())
 }

@@ -2,6 +2,7 @@
 //! CI. Exit status 0 when within the given thresholds, 3 when worse, 1 when an image cannot be
 //! read or the sizes or region do not fit, 2 on a usage error.
 
+use raytracer::files::shown;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -64,10 +65,10 @@ fn run(cli: &CompareCli) -> Result<bool, String> {
     if (reference.width, reference.height) != (test.width, test.height) {
         return Err(format!(
             "the images differ in size: {} is {}×{}, {} is {}×{}",
-            cli.reference.display(),
+            shown(&cli.reference),
             reference.width,
             reference.height,
-            cli.test.display(),
+            shown(&cli.test),
             test.width,
             test.height
         ));

@@ -12,8 +12,7 @@
 //! `image` crate's default resource limits, and every failure is an [`ImageError`] naming the
 //! file; malformed input never panics.
 
-use std::fs::File;
-use std::io::{self, BufWriter, Write};
+use std::io::{self, BufReader};
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
@@ -21,6 +20,8 @@ use image::codecs::openexr::OpenExrEncoder;
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder, ImageReader};
 
+use crate::files::output::{write_atomic, OutputError};
+use crate::files::{input, shown};
 use crate::film::{to_rgb8, Film, ToneMap};
 
 /// The extensions [`write_image`] accepts, as listed in error messages.
@@ -57,21 +58,17 @@ impl OutputFormat {
 #[derive(Debug, thiserror::Error)]
 pub enum ImageError {
     /// The output path's extension is not a supported output format.
-    #[error("cannot write image '{}': unsupported extension {} (supported: {SUPPORTED_EXTENSIONS})", path.display(), describe_extension(path))]
+    #[error(
+        "cannot write image '{}': unsupported extension {} (supported: {SUPPORTED_EXTENSIONS})",
+        shown(path),
+        describe_extension(path)
+    )]
     UnsupportedFormat {
         /// The output path.
         path: PathBuf,
     },
-    /// The folder the output should go into does not exist (or is not a folder).
-    #[error("cannot write image '{}': folder '{}' does not exist or is not a folder", path.display(), folder.display())]
-    MissingFolder {
-        /// The output path.
-        path: PathBuf,
-        /// Its parent folder.
-        folder: PathBuf,
-    },
     /// The film's pixel buffer does not match its size, or the size is zero.
-    #[error("cannot write image '{}': film is {width}x{height} but holds {len} pixels (need a non-empty image with width*height pixels)", path.display())]
+    #[error("cannot write image '{}': film is {width}x{height} but holds {len} pixels (need a non-empty image with width*height pixels)", shown(path))]
     InvalidFilm {
         /// The output path.
         path: PathBuf,
@@ -82,18 +79,11 @@ pub enum ImageError {
         /// Number of pixels actually held.
         len: usize,
     },
-    /// An I/O operation failed while writing.
-    #[error("cannot write image '{}': {action}: {source}", path.display())]
-    Write {
-        /// The output path.
-        path: PathBuf,
-        /// What was being done when it failed.
-        action: &'static str,
-        /// The underlying error.
-        source: io::Error,
-    },
+    /// The output cannot be written (folder, permissions, disk, an input in the way).
+    #[error(transparent)]
+    Output(#[from] OutputError),
     /// The encoder rejected the image.
-    #[error("cannot write image '{}': encoding failed: {source}", path.display())]
+    #[error("cannot write image '{}': encoding failed: {source}", shown(path))]
     Encode {
         /// The output path.
         path: PathBuf,
@@ -101,7 +91,7 @@ pub enum ImageError {
         source: image::ImageError,
     },
     /// The file could not be opened or read.
-    #[error("cannot read image '{}': {source}", path.display())]
+    #[error("cannot read image '{}': {source}", shown(path))]
     Open {
         /// The input path.
         path: PathBuf,
@@ -109,7 +99,7 @@ pub enum ImageError {
         source: io::Error,
     },
     /// The file is not a supported image, is malformed, or exceeds the decoder's limits.
-    #[error("cannot read image '{}': {source}", path.display())]
+    #[error("cannot read image '{}': {source}", shown(path))]
     Decode {
         /// The input path.
         path: PathBuf,
@@ -128,16 +118,29 @@ fn describe_extension(path: &Path) -> String {
 /// Writes the film: PPM = binary P6 8-bit, PNG = 8-bit RGB, both tone-mapped with `map`/`exposure`;
 /// EXR = linear 32-bit float RGB, scaled by `exposure` but not tone-mapped.
 ///
-/// Atomic: writes to a temporary file in the destination folder and renames it over `path`
-/// only when complete, so a failure leaves no partial file and an existing file at `path` untouched.
-/// Errors (never panics): unknown extension, missing folder, unwritable folder, a film whose
-/// pixel count does not match its size, or an empty film.
+/// Atomic (see [`crate::files::output`]): a failure leaves no partial file and an existing file at
+/// `path` untouched. Errors (never panics): unknown extension, missing or unwritable folder, a
+/// film whose pixel count does not match its size, an empty film, a full disk.
 pub fn write_image(
     path: &Path,
     film: &Film,
     map: ToneMap,
     exposure: f32,
 ) -> Result<(), ImageError> {
+    let bytes = encode_image(path, film, map, exposure)?;
+    write_atomic(path, &bytes)?;
+    Ok(())
+}
+
+/// The bytes of the image file [`write_image`] writes, in the format of `path`'s extension.
+/// Encoding into memory first means a failure to write (a full disk, a file-size limit) is
+/// reported as the OS error it is, not as an encoder error.
+pub fn encode_image(
+    path: &Path,
+    film: &Film,
+    map: ToneMap,
+    exposure: f32,
+) -> Result<Vec<u8>, ImageError> {
     let format = OutputFormat::from_path(path).ok_or_else(|| ImageError::UnsupportedFormat {
         path: path.to_path_buf(),
     })?;
@@ -151,25 +154,22 @@ pub fn write_image(
             len: film.pixels.len(),
         });
     }
-    write_atomic(path, |out| match format {
+    let encode_err = |source| ImageError::Encode {
+        path: path.to_path_buf(),
+        source,
+    };
+    let mut out = Vec::new();
+    match format {
         OutputFormat::Ppm => {
             let rgb = to_rgb8(film, map, exposure);
-            write!(out, "P6\n{width} {height}\n255\n")
-                .and_then(|()| out.write_all(&rgb))
-                .map_err(|source| ImageError::Write {
-                    path: path.to_path_buf(),
-                    action: "writing PPM data",
-                    source,
-                })
+            out.extend_from_slice(format!("P6\n{width} {height}\n255\n").as_bytes());
+            out.extend_from_slice(&rgb);
         }
         OutputFormat::Png => {
             let rgb = to_rgb8(film, map, exposure);
-            PngEncoder::new(out)
+            PngEncoder::new(&mut out)
                 .write_image(&rgb, width, height, ExtendedColorType::Rgb8)
-                .map_err(|source| ImageError::Encode {
-                    path: path.to_path_buf(),
-                    source,
-                })
+                .map_err(encode_err)?;
         }
         OutputFormat::Exr => {
             let floats: Vec<u8> = film
@@ -178,63 +178,12 @@ pub fn write_image(
                 .flat_map(|&p| (p * exposure).to_array())
                 .flat_map(f32::to_ne_bytes)
                 .collect();
-            OpenExrEncoder::new(out)
+            OpenExrEncoder::new(io::Cursor::new(&mut out))
                 .write_image(&floats, width, height, ExtendedColorType::Rgb32F)
-                .map_err(|source| ImageError::Encode {
-                    path: path.to_path_buf(),
-                    source,
-                })
+                .map_err(encode_err)?;
         }
-    })
-}
-
-/// Creates a temporary file next to `path`, lets `fill` write it, and renames it over `path`
-/// only if `fill` and flushing succeed. On any error the temporary file is removed and `path`
-/// is left as it was.
-fn write_atomic<F>(path: &Path, fill: F) -> Result<(), ImageError>
-where
-    F: FnOnce(&mut BufWriter<&mut File>) -> Result<(), ImageError>,
-{
-    let folder = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    if !folder.is_dir() {
-        return Err(ImageError::MissingFolder {
-            path: path.to_path_buf(),
-            folder: folder.to_path_buf(),
-        });
     }
-    let write_err = |action: &'static str| {
-        move |source: io::Error| ImageError::Write {
-            path: path.to_path_buf(),
-            action,
-            source,
-        }
-    };
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".tmp-image-");
-    // Temporary files are private (0600) by default; the image should get the permissions of any
-    // new file (0666 less the umask), as if it had been created directly.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    let mut tmp = builder.tempfile_in(folder).map_err(write_err(
-        "cannot create a temporary file in the output folder",
-    ))?;
-    {
-        let mut out = BufWriter::new(tmp.as_file_mut());
-        fill(&mut out)?;
-        out.flush().map_err(write_err("flushing image data"))?;
-    }
-    tmp.as_file()
-        .sync_all()
-        .map_err(write_err("syncing image data to disk"))?;
-    tmp.persist(path)
-        .map_err(|e| write_err("renaming the temporary file into place")(e.error))?;
-    Ok(())
+    Ok(out)
 }
 
 /// Reads PNG, JPEG, PPM (P3 ascii and P6 binary) or EXR into a linear Film:
@@ -246,10 +195,16 @@ pub fn read_image(path: &Path) -> Result<Film, ImageError> {
         path: path.to_path_buf(),
         source,
     };
-    let reader = ImageReader::open(path)
-        .map_err(open_err)?
+    let file = input::open(path).map_err(open_err)?;
+    // The format from the contents, else from the extension (as `ImageReader::open` does).
+    let mut reader = ImageReader::new(BufReader::new(file))
         .with_guessed_format()
         .map_err(open_err)?;
+    if reader.format().is_none() {
+        if let Ok(format) = image::ImageFormat::from_path(path) {
+            reader.set_format(format);
+        }
+    }
     let image = reader.decode().map_err(|source| ImageError::Decode {
         path: path.to_path_buf(),
         source,
@@ -392,7 +347,10 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("no-such-folder").join("out.png");
         let err = write_image(&path, &sample_film(), ToneMap::Linear, 1.0).unwrap_err();
-        assert!(matches!(err, ImageError::MissingFolder { .. }), "{err:?}");
+        assert!(
+            matches!(err, ImageError::Output(OutputError::MissingFolder { .. })),
+            "{err:?}"
+        );
         let msg = err.to_string();
         assert!(
             msg.contains("out.png") && msg.contains("no-such-folder"),
@@ -409,7 +367,10 @@ mod tests {
         fs::write(&file, b"x").unwrap();
         let err =
             write_image(&file.join("out.ppm"), &sample_film(), ToneMap::Linear, 1.0).unwrap_err();
-        assert!(matches!(err, ImageError::MissingFolder { .. }), "{err:?}");
+        assert!(
+            matches!(err, ImageError::Output(OutputError::MissingFolder { .. })),
+            "{err:?}"
+        );
         assert_eq!(fs::read(&file).unwrap(), b"x");
     }
 
@@ -434,7 +395,10 @@ mod tests {
         fs::set_permissions(&locked, fs::Permissions::from_mode(0o755)).unwrap();
         if enforced {
             let err = result.unwrap_err();
-            assert!(matches!(err, ImageError::Write { .. }), "{err:?}");
+            assert!(
+                matches!(err, ImageError::Output(OutputError::Write { .. })),
+                "{err:?}"
+            );
             assert!(err.to_string().contains("out.png"), "{err}");
             assert!(dir_entries(&locked).is_empty());
         } else {
@@ -510,25 +474,6 @@ mod tests {
         };
         assert!(write_image(&path, &bad, ToneMap::Linear, 1.0).is_err());
         assert_eq!(fs::read(&path).unwrap(), old);
-
-        // Failure in the middle of writing: partial data went to the temporary file only,
-        // which is removed; the existing file is untouched.
-        let err = write_atomic(&path, |out| {
-            out.write_all(b"partial").unwrap();
-            out.flush().unwrap();
-            Err(ImageError::Write {
-                path: path.clone(),
-                action: "simulated failure",
-                source: io::Error::other("disk full"),
-            })
-        })
-        .unwrap_err();
-        assert!(err.to_string().contains("simulated failure"));
-        assert_eq!(fs::read(&path).unwrap(), old);
-        assert_eq!(
-            dir_entries(dir.path()),
-            vec!["keep.png".to_string(), "keep.txt".to_string()]
-        );
 
         // A successful write replaces it.
         write_image(&path, &sample_film(), ToneMap::Linear, 1.0).unwrap();

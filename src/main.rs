@@ -9,8 +9,10 @@ use std::sync::Arc;
 use clap::Parser;
 
 use raytracer::accel::AccelKind;
+use raytracer::files::output::{report_file_size_limit, OutputError, Outputs, PendingFile};
+use raytracer::files::shown;
 use raytracer::film::ToneMap;
-use raytracer::image_io::{write_image, OutputFormat};
+use raytracer::image_io::{encode_image, OutputFormat};
 use raytracer::render::{render, RenderOptions};
 use raytracer::sampling::Method;
 use raytracer::scene::{load, LoadOptions};
@@ -50,7 +52,7 @@ struct Cli {
     adaptive_lights: bool,
     /// Skip reflection/refraction rays whose accumulated weight is below X (POV-Ray's
     /// adc_bailout; 1/255 = 0.0039 is one 8-bit step).
-    #[arg(long, value_name = "X")]
+    #[arg(long, value_name = "X", value_parser = unit_interval_f32)]
     adc_bailout: Option<f32>,
     /// Seed for every random number (the image is a pure function of the scene, options and seed).
     #[arg(long, default_value_t = 0)]
@@ -64,12 +66,12 @@ struct Cli {
     /// Tone map for 8-bit output: linear (the coursework's: ×255, clamp), srgb, reinhard.
     #[arg(long, default_value = "linear")]
     tonemap: ToneMap,
-    /// Multiplies the scene's exposure.
-    #[arg(long, default_value_t = 1.0)]
+    /// Multiplies the scene's exposure (a finite number ≥ 0, as in the scene file).
+    #[arg(long, default_value_t = 1.0, value_parser = non_negative_f32)]
     exposure: f32,
     /// Worker threads (default: all cores).
-    #[arg(long)]
-    threads: Option<usize>,
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    threads: Option<u64>,
     /// Accelerator: auto (SAH BVH, or none for tiny scenes), none, median, sah.
     #[arg(long, default_value = "auto")]
     accel: AccelKind,
@@ -94,12 +96,16 @@ struct Cli {
     /// Refuse area lights that take more shadow rays per shading point than this.
     #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_LIGHT_SAMPLES)]
     max_light_samples: u32,
+    /// Refuse scene files larger than this many bytes.
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_SCENE_BYTES)]
+    max_scene_bytes: u64,
     /// No progress bar, no warnings, no summary line.
     #[arg(short, long)]
     quiet: bool,
 }
 
 fn main() -> ExitCode {
+    report_file_size_limit();
     let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
     if args.get(1).is_some_and(|a| a == "bench") {
         return bench_cli::main(&args[1..]);
@@ -114,14 +120,15 @@ fn main() -> ExitCode {
         Ok(c) => c,
         Err(code) => return code,
     };
-    match run(&cli) {
+    let interrupted = interrupt_flag();
+    match run(&cli, &interrupted) {
         Ok(()) => ExitCode::from(exit_code::OK),
         Err(Failure::Usage(msg)) => {
             eprintln!("error: {msg}");
             ExitCode::from(exit_code::USAGE)
         }
-        Err(Failure::Input(e)) => {
-            eprintln!("error: {e:#}");
+        Err(Failure::Input(msg)) => {
+            eprintln!("error: {msg}");
             ExitCode::from(exit_code::BAD_INPUT)
         }
         Err(Failure::Interrupted) => {
@@ -133,28 +140,32 @@ fn main() -> ExitCode {
 
 enum Failure {
     Usage(String),
-    Input(anyhow::Error),
+    /// A bad scene, asset or output; the message names the file (our errors carry their cause
+    /// in their own text, so it is printed once, not followed by its source chain).
+    Input(String),
     Interrupted,
 }
 
-fn run(cli: &Cli) -> Result<(), Failure> {
+impl From<OutputError> for Failure {
+    fn from(e: OutputError) -> Failure {
+        match e {
+            OutputError::IsInput { .. } | OutputError::Twice { .. } => {
+                Failure::Usage(e.to_string())
+            }
+            _ => Failure::Input(e.to_string()),
+        }
+    }
+}
+
+fn run(cli: &Cli, interrupted: &Arc<AtomicBool>) -> Result<(), Failure> {
     if OutputFormat::from_path(&cli.output).is_none() {
         return Err(Failure::Usage(format!(
             "cannot tell the image format of '{}': use .ppm, .png or .exr",
-            cli.output.display()
+            shown(&cli.output)
         )));
     }
-    if same_file(&cli.scene, &cli.output) {
-        return Err(Failure::Usage(format!(
-            "the output '{}' is the scene file itself",
-            cli.output.display()
-        )));
-    }
-    if let Some(t) = cli.threads {
-        if t == 0 {
-            return Err(Failure::Usage("--threads must be at least 1".into()));
-        }
-    }
+    // The scene file first, before reading it; then every texture and mesh it names.
+    Outputs::from_inputs([cli.scene.as_path()]).claim(&cli.output)?;
     let load_options = LoadOptions {
         width: cli.width,
         height: cli.height,
@@ -163,12 +174,20 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         max_bounces: cli.max_bounces,
         max_triangles: cli.max_triangles,
         max_light_samples: cli.max_light_samples,
+        max_scene_bytes: cli.max_scene_bytes,
     };
-    let scene = load(&cli.scene, &load_options).map_err(|e| Failure::Input(e.into()))?;
+    let scene = load(&cli.scene, &load_options).map_err(|e| Failure::Input(e.to_string()))?;
     if !cli.quiet {
         for w in &scene.warnings {
             eprintln!("warning: {w}");
         }
+    }
+    Outputs::from_inputs(scene.inputs.iter().map(PathBuf::as_path)).claim(&cli.output)?;
+    // Created now, so a folder that cannot be written is reported before the render; removed
+    // unless the finished image is committed.
+    let pending = PendingFile::create(&cli.output)?;
+    if interrupted.load(Ordering::Relaxed) {
+        return Err(Failure::Interrupted);
     }
     let options = RenderOptions {
         spp: cli.spp,
@@ -184,25 +203,26 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             cutoff: cli.adc_bailout,
         },
         progress: !cli.quiet && std::io::stderr().is_terminal(),
-        cancel: Some(interrupt_flag()),
+        cancel: Some(interrupted.clone()),
     };
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(cli.threads.unwrap_or(0))
+        .num_threads(cli.threads.unwrap_or(0) as usize)
         .build()
-        .map_err(|e| Failure::Input(anyhow::anyhow!("cannot start worker threads: {e}")))?;
+        .map_err(|e| Failure::Input(format!("cannot start worker threads: {e}")))?;
     let out = pool.install(|| render(&scene, &options));
-    if out.cancelled {
+    if out.cancelled || interrupted.load(Ordering::Relaxed) {
         return Err(Failure::Interrupted);
     }
     let exposure = scene.exposure * cli.exposure;
-    write_image(&cli.output, &out.film, cli.tonemap, exposure)
-        .map_err(|e| Failure::Input(e.into()))?;
+    let bytes = encode_image(&cli.output, &out.film, cli.tonemap, exposure)
+        .map_err(|e| Failure::Input(e.to_string()))?;
+    pending.commit(&bytes)?;
     if !cli.quiet {
         let secs = out.render_time.as_secs_f64();
         let rays = out.counts.total();
         eprintln!(
             "{}: {}×{}, {} spp, {:.3} s (build {:.3} s), {} rays, {:.2} Mrays/s",
-            cli.output.display(),
+            shown(&cli.output),
             out.film.width,
             out.film.height,
             options.spp,
@@ -215,9 +235,10 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     Ok(())
 }
 
-/// A flag that Ctrl-C (SIGINT) sets, so the render stops at the next tile and nothing is written.
-/// If the handler cannot be installed, Ctrl-C keeps its default effect, which also writes nothing:
-/// the image is only written, atomically, after the render.
+/// A flag that Ctrl-C (SIGINT), SIGTERM or SIGHUP sets, so the render stops within a fraction of
+/// a second, the temporary output file is removed and nothing is written. If the handler cannot
+/// be installed, the signals keep their default effect, which also writes nothing: the image is
+/// only ever renamed into place complete.
 fn interrupt_flag() -> Arc<AtomicBool> {
     let flag = Arc::new(AtomicBool::new(false));
     let setter = flag.clone();
@@ -225,10 +246,22 @@ fn interrupt_flag() -> Arc<AtomicBool> {
     flag
 }
 
-/// Whether two paths name the same existing file.
-fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
-    match (a.canonicalize(), b.canonicalize()) {
-        (Ok(x), Ok(y)) => x == y,
-        _ => false,
+/// A command-line number that must be finite and ≥ 0.
+fn non_negative_f32(text: &str) -> Result<f32, String> {
+    let v: f32 = text
+        .parse()
+        .map_err(|_| format!("'{text}' is not a number"))?;
+    if !(v.is_finite() && v >= 0.0) {
+        return Err(format!("must be a finite number ≥ 0, found {text}"));
     }
+    Ok(v)
+}
+
+/// A command-line number that must lie in [0, 1].
+fn unit_interval_f32(text: &str) -> Result<f32, String> {
+    let v = non_negative_f32(text)?;
+    if v > 1.0 {
+        return Err(format!("must be between 0 and 1, found {text}"));
+    }
+    Ok(v)
 }

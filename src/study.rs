@@ -13,6 +13,7 @@
 //! such edges (Owen, "Scrambled net variance for integrals of smooth functions", Ann. Stat.
 //! 1997, and Mitchell's analysis).
 
+use crate::files::shown;
 use std::path::Path;
 
 use crate::film::Film;
@@ -419,7 +420,7 @@ pub fn write_plot(path: &Path, runs: &[Run], title: &str) -> Result<(), String> 
         image::ColorType::Rgb8,
         image::ImageFormat::Png,
     )
-    .map_err(|e| format!("cannot write {}: {e}", path.display()))
+    .map_err(|e| format!("cannot write {}: {e}", shown(path)))
 }
 
 /// One variant of a work-skipping comparison.

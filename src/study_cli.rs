@@ -3,6 +3,7 @@
 //! and prints the fitted slopes and the time each sampler needs to reach a target MSE.
 //! `--skip-work` instead times the work-skipping switches against a plain render.
 
+use raytracer::files::shown;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -142,7 +143,7 @@ fn run(cli: &StudyCli) -> Result<(), String> {
         }
     }
     std::fs::create_dir_all(&cli.out)
-        .map_err(|e| format!("cannot create {}: {e}", cli.out.display()))?;
+        .map_err(|e| format!("cannot create {}: {e}", shown(&cli.out)))?;
     let csv = cli.csv.clone().unwrap_or(cli.out.join("study.csv"));
     let plot = cli.plot.clone().unwrap_or(cli.out.join("study.png"));
 
@@ -152,7 +153,7 @@ fn run(cli: &StudyCli) -> Result<(), String> {
             if (f.width, f.height) != (w, h) {
                 return Err(format!(
                     "the reference {} is {}×{}, the scene renders {w}×{h}",
-                    path.display(),
+                    shown(path),
                     f.width,
                     f.height
                 ));
@@ -197,7 +198,7 @@ fn run(cli: &StudyCli) -> Result<(), String> {
             r.flip
         );
     });
-    study::write_csv(&csv, &runs).map_err(|e| format!("cannot write {}: {e}", csv.display()))?;
+    study::write_csv(&csv, &runs).map_err(|e| format!("cannot write {}: {e}", shown(&csv)))?;
     let name = cli
         .scene
         .file_name()
@@ -243,7 +244,7 @@ fn run(cli: &StudyCli) -> Result<(), String> {
             }
         }
     }
-    eprintln!("study: wrote {} and {}", csv.display(), plot.display());
+    eprintln!("study: wrote {} and {}", shown(&csv), shown(&plot));
     Ok(())
 }
 
@@ -256,7 +257,7 @@ fn skip_work(cli: &StudyCli) -> Result<(), String> {
     };
     eprintln!(
         "study: {} at {}×{}, {} spp, {} run(s) each …",
-        cli.scene.display(),
+        shown(&cli.scene),
         scene.camera.width,
         scene.camera.height,
         cli.spp,

@@ -1,5 +1,6 @@
 //! Errors and warnings from reading a scene, each with the file and the place in it.
 
+use crate::files::shown;
 use std::fmt;
 use std::path::PathBuf;
 
@@ -15,7 +16,7 @@ pub struct Location {
 
 impl fmt::Display for Location {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}:{}:{}", self.file.display(), self.line, self.column)?;
+        write!(f, "{}:{}:{}", shown(&self.file), self.line, self.column)?;
         if !self.path.is_empty() {
             write!(f, ": {}", self.path)?;
         }
@@ -27,13 +28,13 @@ impl fmt::Display for Location {
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
     /// The scene file itself could not be read.
-    #[error("{}: cannot read the scene file: {source}", file.display())]
+    #[error("{}: cannot read the scene file: {source}", shown(file))]
     Read {
         file: PathBuf,
         source: std::io::Error,
     },
     /// The text is not JSON (comments and trailing commas are accepted).
-    #[error("{}:{line}:{column}: invalid JSON: {message}", file.display())]
+    #[error("{}:{line}:{column}: invalid JSON: {message}", shown(file))]
     Syntax {
         file: PathBuf,
         line: usize,

@@ -12,6 +12,7 @@
 //!   the render allocates anything for them (mesh files are read first; their readers refuse
 //!   counts the file cannot hold).
 
+use crate::files::shown;
 use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
 
@@ -20,6 +21,7 @@ use super::json::{Node, Source};
 use super::mesh_file::{read_mesh, MeshData};
 use super::{RenderMode, Scene, Variant};
 use crate::camera::{Camera, Handedness, Lens};
+use crate::files::input::{self, SizeLimit};
 use crate::geometry::{Cylinder, Mesh, MeshUv, Primitive, Shape, Sphere, Triangle};
 use crate::light::{Intensity, Light};
 use crate::material::Material;
@@ -35,6 +37,9 @@ pub const DEFAULT_MAX_BOUNCES: u32 = 64;
 pub const DEFAULT_MAX_TRIANGLES: usize = 50_000_000;
 /// Default cap on shadow rays per shading point for one area light.
 pub const DEFAULT_MAX_LIGHT_SAMPLES: u32 = 65_536;
+/// Default cap on the scene file's size: 64 MiB. The parsed document takes about ten times the
+/// file's size in memory, and the largest real scene files (inline meshes) are under 2 MiB.
+pub const DEFAULT_MAX_SCENE_BYTES: u64 = 64 << 20;
 /// Index of refraction of a transmissive material that gives none (crown glass).
 pub const DEFAULT_ETA: f32 = 1.5;
 /// `nbounces` when a file has none.
@@ -53,6 +58,8 @@ pub struct LoadOptions {
     pub max_bounces: u32,
     pub max_triangles: usize,
     pub max_light_samples: u32,
+    /// Largest scene file accepted, in bytes.
+    pub max_scene_bytes: u64,
 }
 
 impl Default for LoadOptions {
@@ -65,13 +72,19 @@ impl Default for LoadOptions {
             max_bounces: DEFAULT_MAX_BOUNCES,
             max_triangles: DEFAULT_MAX_TRIANGLES,
             max_light_samples: DEFAULT_MAX_LIGHT_SAMPLES,
+            max_scene_bytes: DEFAULT_MAX_SCENE_BYTES,
         }
     }
 }
 
-/// Reads and converts the scene file at `path`.
+/// Reads and converts the scene file at `path`: a regular file of at most
+/// [`LoadOptions::max_scene_bytes`] (a FIFO or a device is refused without blocking).
 pub fn load(path: &Path, options: &LoadOptions) -> Result<Scene, SceneError> {
-    let bytes = std::fs::read(path).map_err(|source| SceneError::Read {
+    let limit = SizeLimit {
+        bytes: options.max_scene_bytes,
+        flag: "--max-scene-bytes",
+    };
+    let bytes = input::read(path, limit).map_err(|source| SceneError::Read {
         file: path.to_path_buf(),
         source,
     })?;
@@ -89,7 +102,9 @@ pub fn load(path: &Path, options: &LoadOptions) -> Result<Scene, SceneError> {
             });
         }
     };
-    load_str(&text, path, options)
+    let mut scene = load_str(&text, path, options)?;
+    scene.inputs.insert(0, path.to_path_buf());
+    Ok(scene)
 }
 
 /// Converts scene text; `path` names the file in messages and anchors relative asset paths.
@@ -112,6 +127,7 @@ pub fn load_str(text: &str, path: &Path, options: &LoadOptions) -> Result<Scene,
         primitives: Vec::new(),
         lights: Vec::new(),
         triangles: 0,
+        inputs: Vec::new(),
     };
     loader.scene(&root)
 }
@@ -146,6 +162,7 @@ struct Loader<'o> {
     primitives: Vec<Primitive>,
     lights: Vec<Light>,
     triangles: usize,
+    inputs: Vec<PathBuf>,
 }
 
 /// Sphere texture frame: the top pole (`v = 0`) is world +y and the seam (`u = 0`) faces −x, with
@@ -314,6 +331,7 @@ impl<'o> Loader<'o> {
             meshes: self.meshes,
             has_transmissive,
             warnings: self.warnings,
+            inputs: self.inputs,
         })
     }
 
@@ -1292,7 +1310,7 @@ impl<'o> Loader<'o> {
         let tex = Texture::load(&path)
             .map_err(|e| node.error(format!("cannot load the texture: {e}")))?;
         if tex.width == 0 || tex.height == 0 {
-            return Err(node.error(format!("the texture {} is empty", path.display())));
+            return Err(node.error(format!("the texture {} is empty", shown(&path))));
         }
         self.textures.push(tex);
         let i = self.textures.len() as u32 - 1;
@@ -1301,8 +1319,9 @@ impl<'o> Loader<'o> {
     }
 
     /// The first existing file among the scene's folder, the asset folders and the working
-    /// directory joined with `rel`.
-    fn resolve(&self, node: &Node, rel: &str) -> Result<PathBuf, SceneError> {
+    /// directory joined with `rel`, recorded as one of the scene's inputs. A path that exists but
+    /// is not a regular file (a folder, a FIFO, a device) is an error, never opened.
+    fn resolve(&mut self, node: &Node, rel: &str) -> Result<PathBuf, SceneError> {
         let rel_path = PathBuf::from(rel.replace('\\', "/"));
         let mut tried = Vec::new();
         let mut bases = vec![self.base.clone()];
@@ -1320,14 +1339,22 @@ impl<'o> Loader<'o> {
             candidates.push(self.base.join(name));
         }
         for candidate in candidates {
-            if candidate.is_file() {
-                return Ok(candidate);
+            if let Ok(meta) = std::fs::metadata(&candidate) {
+                if meta.is_file() {
+                    if !self.inputs.contains(&candidate) {
+                        self.inputs.push(candidate.clone());
+                    }
+                    return Ok(candidate);
+                }
+                if let Err(e) = input::open(&candidate) {
+                    return Err(node.error(format!("cannot read '{}': {e}", shown(&candidate))));
+                }
             }
             if !tried.contains(&candidate) {
                 tried.push(candidate);
             }
         }
-        let list: Vec<String> = tried.iter().map(|p| p.display().to_string()).collect();
+        let list: Vec<String> = tried.iter().map(|p| shown(p).to_string()).collect();
         Err(node.error(format!(
             "file '{rel}' not found (tried {})",
             list.join(", ")

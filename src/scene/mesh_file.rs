@@ -53,6 +53,7 @@
 //! * more than 2^32 - 1 vertices (indices are `u32`);
 //! * files without a single triangle, including PLY files without a `face` element.
 
+use crate::files::shown;
 use std::io::{BufRead, ErrorKind};
 use std::path::{Path, PathBuf};
 
@@ -83,7 +84,7 @@ pub struct MeshData {
 #[derive(Debug, thiserror::Error)]
 pub enum MeshFileError {
     /// The file could not be opened or read.
-    #[error("{}: cannot read mesh file: {source}", .path.display())]
+    #[error("{}: cannot read mesh file: {source}", shown(.path))]
     Io {
         /// The mesh file.
         path: PathBuf,
@@ -94,7 +95,7 @@ pub enum MeshFileError {
     /// The extension is neither `.ply` nor `.obj`.
     #[error(
         "{}: unsupported mesh file extension {}; supported extensions are .ply and .obj",
-        .path.display(),
+        shown(.path),
         describe_extension(.extension)
     )]
     UnsupportedExtension {
@@ -104,13 +105,13 @@ pub enum MeshFileError {
         extension: Option<String>,
     },
     /// The file has no bytes at all.
-    #[error("{}: file is empty", .path.display())]
+    #[error("{}: file is empty", shown(.path))]
     Empty {
         /// The mesh file.
         path: PathBuf,
     },
     /// The file does not follow the format (syntax, header, structure, truncation).
-    #[error("{}{}: {message}", .path.display(), line_suffix(.line))]
+    #[error("{}{}: {message}", shown(.path), line_suffix(.line))]
     Malformed {
         /// The mesh file.
         path: PathBuf,
@@ -124,7 +125,7 @@ pub enum MeshFileError {
         "{}: the PLY header declares {count} '{element}' elements; with the elements before \
          them that needs at least {needed} bytes, but only {available} bytes follow the header \
          (truncated or corrupt file)",
-        .path.display()
+        shown(.path)
     )]
     CountTooLarge {
         /// The mesh file.
@@ -141,7 +142,7 @@ pub enum MeshFileError {
     /// A face lists fewer than three corners.
     #[error(
         "{}{}: face {face} has {count} vertex indices; at least 3 are needed",
-        .path.display(),
+        shown(.path),
         line_suffix(.line)
     )]
     FaceTooSmall {
@@ -158,7 +159,7 @@ pub enum MeshFileError {
     #[error(
         "{}{}: face {face} refers to {kind} index {index}, which is out of range \
          ({available} {} defined)",
-        .path.display(),
+        shown(.path),
         line_suffix(.line),
         plural(.kind)
     )]
@@ -179,7 +180,7 @@ pub enum MeshFileError {
     /// A position, normal or texture coordinate is NaN or infinite.
     #[error(
         "{}{}: vertex {vertex} has a non-finite {what}",
-        .path.display(),
+        shown(.path),
         line_suffix(.line)
     )]
     NonFinite {
@@ -193,7 +194,7 @@ pub enum MeshFileError {
         what: &'static str,
     },
     /// The file parsed but contains no triangles.
-    #[error("{}: no triangles in mesh file{}", .path.display(), .detail)]
+    #[error("{}: no triangles in mesh file{}", shown(.path), .detail)]
     NoTriangles {
         /// The mesh file.
         path: PathBuf,
@@ -1692,7 +1693,7 @@ mod tests {
                     assert!(mesh.uvs.as_ref().is_none_or(|v| v.len() == n));
                     println!(
                         "loaded {}: {} vertices, {} triangles, normals: {}, uvs: {}",
-                        path.display(),
+                        shown(path),
                         n,
                         mesh.faces.len(),
                         mesh.normals.is_some(),

@@ -57,4 +57,7 @@ pub struct Scene {
     pub has_transmissive: bool,
     /// What the loader skipped or guessed.
     pub warnings: Vec<Warning>,
+    /// The files it was read from: the scene file, then each texture and mesh file (outputs
+    /// must never be one of them).
+    pub inputs: Vec<std::path::PathBuf>,
 }
