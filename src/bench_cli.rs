@@ -1,6 +1,6 @@
 //! `raytracer bench`: the command line of the benchmarks in [`raytracer::bench`].
 
-use raytracer::files::shown;
+use raytracer::files::output::{Outputs, PendingFile};
 use std::ffi::OsString;
 use std::io::Write;
 use std::path::PathBuf;
@@ -90,6 +90,21 @@ pub fn main(args: &[OsString]) -> ExitCode {
 }
 
 fn run(cli: &BenchCli) -> Result<(), String> {
+    // The CSV may not be one of the bundled scenes the table reads (or anything they use); its
+    // folder is checked before the benchmarks run.
+    let csv_out = match &cli.csv {
+        Some(path) => {
+            let scenes = cli.scenes.clone().unwrap_or_else(default_scenes_dir);
+            let inputs: Vec<PathBuf> = std::fs::read_dir(&scenes)
+                .map(|entries| entries.filter_map(|e| e.ok().map(|e| e.path())).collect())
+                .unwrap_or_default();
+            Outputs::from_inputs(inputs.iter().map(PathBuf::as_path))
+                .claim(path)
+                .map_err(|e| e.to_string())?;
+            Some(PendingFile::create(path).map_err(|e| e.to_string())?)
+        }
+        None => None,
+    };
     let threads = rayon::current_num_threads();
     let runs = if cli.quick { 1 } else { cli.runs as usize };
     let leaf_size = cli.leaf_size as usize;
@@ -171,9 +186,10 @@ fn run(cli: &BenchCli) -> Result<(), String> {
     };
     print!("{}", format_table(&header, &rows));
     std::io::stdout().flush().map_err(|e| e.to_string())?;
-    if let Some(path) = &cli.csv {
-        std::fs::write(path, format_csv(&header, &rows))
-            .map_err(|e| format!("cannot write {}: {e}", shown(path)))?;
+    if let Some(pending) = csv_out {
+        pending
+            .commit(format_csv(&header, &rows).as_bytes())
+            .map_err(|e| e.to_string())?;
     }
     Ok(())
 }

@@ -8,8 +8,9 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
+use raytracer::files::output::{Outputs, PendingFile};
 use raytracer::film::ToneMap;
-use raytracer::image_io::{read_image, write_image};
+use raytracer::image_io::{encode_image, read_image};
 use raytracer::metric::{flip_map, heat_map, mse, psnr, Region};
 
 use crate::exit_code;
@@ -29,15 +30,29 @@ struct CompareCli {
     /// Only pixels in this rectangle: x,y,width,height.
     #[arg(long)]
     region: Option<Region>,
-    /// Fail (exit 3) if the MSE is above this.
-    #[arg(long)]
+    /// Fail (exit 3) if the MSE is above this (or not a number: an image holds NaN).
+    #[arg(long, value_parser = threshold)]
     max_mse: Option<f64>,
-    /// Fail (exit 3) if the mean FLIP is above this.
-    #[arg(long)]
+    /// Fail (exit 3) if the mean FLIP is above this (or not a number).
+    #[arg(long, value_parser = threshold)]
     max_flip: Option<f64>,
     /// Write a FLIP heat map (PNG, PPM or EXR) here.
     #[arg(long)]
     diff: Option<PathBuf>,
+}
+
+/// A threshold: a finite number ≥ 0.
+fn threshold(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        Ok(_) => Err(format!("must be a finite number ≥ 0, found {text}")),
+        Err(_) => Err(format!("'{text}' is not a number")),
+    }
+}
+
+/// Whether `value` is within `max`; NaN is never within.
+fn within(value: f64, max: f64) -> bool {
+    value <= max
 }
 
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
@@ -51,19 +66,45 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
         } else {
             exit_code::OK
         }),
-        Err(msg) => {
+        Err(Failure::Usage(msg)) => {
+            eprintln!("error: {msg}");
+            ExitCode::from(exit_code::USAGE)
+        }
+        Err(Failure::Input(msg)) => {
             eprintln!("error: {msg}");
             ExitCode::from(exit_code::BAD_INPUT)
         }
     }
 }
 
+enum Failure {
+    Usage(String),
+    Input(String),
+}
+
+impl From<String> for Failure {
+    fn from(msg: String) -> Failure {
+        Failure::Input(msg)
+    }
+}
+
 /// Prints the metrics; `Ok(true)` when a threshold is exceeded.
-fn run(cli: &CompareCli) -> Result<bool, String> {
+fn run(cli: &CompareCli) -> Result<bool, Failure> {
+    // The heat map may be neither image; its folder is checked before the work.
+    let diff_out = match &cli.diff {
+        Some(path) => {
+            let mut guard = Outputs::from_inputs([cli.reference.as_path(), cli.test.as_path()]);
+            guard
+                .claim(path)
+                .map_err(|e| Failure::Usage(e.to_string()))?;
+            Some(PendingFile::create(path).map_err(|e| e.to_string())?)
+        }
+        None => None,
+    };
     let reference = read_image(&cli.reference).map_err(|e| e.to_string())?;
     let test = read_image(&cli.test).map_err(|e| e.to_string())?;
     if (reference.width, reference.height) != (test.width, test.height) {
-        return Err(format!(
+        return Err(Failure::Input(format!(
             "the images differ in size: {} is {}×{}, {} is {}×{}",
             shown(&cli.reference),
             reference.width,
@@ -71,16 +112,16 @@ fn run(cli: &CompareCli) -> Result<bool, String> {
             shown(&cli.test),
             test.width,
             test.height
-        ));
+        )));
     }
     let region = cli
         .region
         .unwrap_or(Region::full(reference.width, reference.height));
     if !region.fits(reference.width, reference.height) {
-        return Err(format!(
+        return Err(Failure::Input(format!(
             "the region {},{},{},{} does not fit the {}×{} images",
             region.x, region.y, region.width, region.height, reference.width, reference.height
-        ));
+        )));
     }
     let e = mse(&reference, &test, region);
     let map = flip_map(&reference, &test);
@@ -94,19 +135,32 @@ fn run(cli: &CompareCli) -> Result<bool, String> {
     println!("mse {e:.6e}");
     println!("psnr {:.3} dB", psnr(e));
     println!("flip {flip:.6}");
-    if let Some(path) = &cli.diff {
+    for (name, path, image) in [
+        ("reference", &cli.reference, &reference),
+        ("test", &cli.test, &test),
+    ] {
+        let bad = image.pixels.iter().filter(|p| !p.is_finite()).count();
+        if bad > 0 {
+            eprintln!(
+                "the {name} image {} has {bad} pixel(s) with NaN or infinite values",
+                shown(path)
+            );
+        }
+    }
+    if let (Some(path), Some(pending)) = (&cli.diff, diff_out) {
         let heat = heat_map(reference.width, reference.height, &map);
-        write_image(path, &heat, ToneMap::Linear, 1.0).map_err(|e| e.to_string())?;
+        let bytes = encode_image(path, &heat, ToneMap::Linear, 1.0).map_err(|e| e.to_string())?;
+        pending.commit(&bytes).map_err(|e| e.to_string())?;
     }
     let mut worse = false;
     if let Some(m) = cli.max_mse {
-        if e > m {
+        if !within(e, m) {
             eprintln!("MSE {e:.6e} is above --max-mse {m:e}");
             worse = true;
         }
     }
     if let Some(m) = cli.max_flip {
-        if flip > m {
+        if !within(flip, m) {
             eprintln!("mean FLIP {flip:.6} is above --max-flip {m}");
             worse = true;
         }

@@ -99,7 +99,8 @@ fn to_flip_image(f: &Film) -> nv_flip::FlipImageRgb8 {
     nv_flip::FlipImageRgb8::with_data(f.width, f.height, &bytes)
 }
 
-/// The FLIP error of every pixel, in [0, 1], row-major.
+/// The FLIP error of every pixel, in [0, 1], row-major; NaN where either image holds NaN (a
+/// pixel with no value has no error either, so every mean and threshold over it fails).
 pub fn flip_map(reference: &Film, test: &Film) -> Vec<f32> {
     assert_eq!(
         (reference.width, reference.height),
@@ -110,7 +111,13 @@ pub fn flip_map(reference: &Film, test: &Film) -> Vec<f32> {
         to_flip_image(test),
         nv_flip::DEFAULT_PIXELS_PER_DEGREE,
     );
-    map.to_vec()
+    let mut map = map.to_vec();
+    for (i, v) in map.iter_mut().enumerate() {
+        if reference.pixels[i].is_nan() || test.pixels[i].is_nan() {
+            *v = f32::NAN;
+        }
+    }
+    map
 }
 
 /// Mean FLIP error over `region`.
@@ -128,7 +135,12 @@ pub fn mean_flip(reference: &Film, test: &Film, region: Region) -> f64 {
 
 /// A heat map of a per-pixel error in [0, 1] (FLIP's "magma" colours), as a displayable film.
 pub fn heat_map(width: u32, height: u32, error: &[f32]) -> Film {
-    let map = nv_flip::FlipImageFloat::with_data(width, height, error);
+    // A pixel without an error value (NaN) is shown as the largest error.
+    let error: Vec<f32> = error
+        .iter()
+        .map(|&e| if e.is_nan() { 1.0 } else { e })
+        .collect();
+    let map = nv_flip::FlipImageFloat::with_data(width, height, &error);
     let rgb = map.apply_color_lut(&nv_flip::magma_lut()).to_vec();
     let pixels = rgb
         .chunks_exact(3)
@@ -144,6 +156,25 @@ mod tests {
 
     fn flat(w: u32, h: u32, c: f32) -> Film {
         Film::from_pixels(w, h, vec![Vec3::splat(c); (w * h) as usize])
+    }
+
+    #[test]
+    fn a_nan_pixel_makes_both_metrics_nan() {
+        let a = flat(8, 8, 0.5);
+        let mut b = flat(8, 8, 0.5);
+        b.pixels[9] = Vec3::new(0.5, f32::NAN, 0.5);
+        assert!(mse(&a, &b, Region::full(8, 8)).is_nan());
+        assert!(mean_flip(&a, &b, Region::full(8, 8)).is_nan());
+        // Outside the NaN pixel's region both are defined.
+        let corner = Region {
+            x: 4,
+            y: 4,
+            width: 4,
+            height: 4,
+        };
+        assert_eq!(mse(&a, &b, corner), 0.0);
+        let heat = heat_map(8, 8, &flip_map(&a, &b));
+        assert!(heat.pixels.iter().all(|p| p.is_finite()));
     }
 
     #[test]

@@ -13,8 +13,7 @@
 //! such edges (Owen, "Scrambled net variance for integrals of smooth functions", Ann. Stat.
 //! 1997, and Mitchell's analysis).
 
-use crate::files::shown;
-use std::path::Path;
+use image::ImageEncoder;
 
 use crate::film::Film;
 use crate::integrator::TraceOptions;
@@ -242,8 +241,8 @@ pub fn time_to_reach(runs: &[Run], sampler: Method, target: f64) -> Option<f64> 
     })
 }
 
-/// Writes the runs as CSV: `sampler,samples,seconds,mse,mse_region,flip`.
-pub fn write_csv(path: &Path, runs: &[Run]) -> std::io::Result<()> {
+/// The runs as CSV: `sampler,samples,seconds,mse,mse_region,flip`.
+pub fn csv_text(runs: &[Run]) -> String {
     let mut s = String::from("sampler,samples,seconds,mse,mse_region,flip\n");
     for r in runs {
         s.push_str(&format!(
@@ -251,7 +250,7 @@ pub fn write_csv(path: &Path, runs: &[Run]) -> std::io::Result<()> {
             r.sampler, r.samples, r.seconds, r.mse, r.mse_region, r.flip
         ));
     }
-    std::fs::write(path, s)
+    s
 }
 
 /// The font the plots' text is drawn with, bundled so that no system font is needed (DejaVu Sans
@@ -408,19 +407,15 @@ fn bounds(v: &[f64]) -> (f64, f64) {
     (lo / 1.5, hi * 1.5)
 }
 
-/// Writes the plot of [`plot_rgb`] as a PNG.
-pub fn write_plot(path: &Path, runs: &[Run], title: &str) -> Result<(), String> {
+/// The plot of [`plot_rgb`] as PNG bytes.
+pub fn plot_png(runs: &[Run], title: &str) -> Result<Vec<u8>, String> {
     let (w, h) = (1200, 520);
     let buf = plot_rgb(runs, title, w, h)?;
-    image::save_buffer_with_format(
-        path,
-        &buf,
-        w,
-        h,
-        image::ColorType::Rgb8,
-        image::ImageFormat::Png,
-    )
-    .map_err(|e| format!("cannot write {}: {e}", shown(path)))
+    let mut png = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut png)
+        .write_image(&buf, w, h, image::ExtendedColorType::Rgb8)
+        .map_err(|e| format!("cannot encode the plot: {e}"))?;
+    Ok(png)
 }
 
 /// One variant of a work-skipping comparison.

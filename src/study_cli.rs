@@ -4,14 +4,15 @@
 //! `--skip-work` instead times the work-skipping switches against a plain render.
 
 use raytracer::files::shown;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Parser;
 
+use raytracer::files::output::{Outputs, PendingFile};
 use raytracer::film::ToneMap;
-use raytracer::image_io::{read_image, write_image};
+use raytracer::image_io::{encode_image, read_image};
 use raytracer::integrator::DEFAULT_CUTOFF;
 use raytracer::metric::Region;
 use raytracer::render::RenderOptions;
@@ -58,7 +59,7 @@ struct StudyCli {
     reference_samples: u32,
     /// Target MSE for the equal-error times (default: what random reaches at 256 samples, or at
     /// its largest count if that is fewer).
-    #[arg(long)]
+    #[arg(long, value_parser = positive_f64)]
     target_mse: Option<f64>,
     /// Samplers to run, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "random,jittered,sobol")]
@@ -73,8 +74,8 @@ struct StudyCli {
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     height: Option<u32>,
     /// Worker threads (default: all cores).
-    #[arg(long)]
-    threads: Option<usize>,
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    threads: Option<u64>,
     /// A fast smoke run: at most 16 samples, a 256-sample reference, 48 pixels wide.
     #[arg(long)]
     quick: bool,
@@ -86,9 +87,27 @@ struct StudyCli {
     /// Samples per pixel for --skip-work.
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=65536))]
     spp: u32,
-    /// Cut-off for --skip-work's adc-bailout runs.
-    #[arg(long, default_value_t = DEFAULT_CUTOFF)]
+    /// Cut-off for --skip-work's adc-bailout runs (between 0 and 1).
+    #[arg(long, default_value_t = DEFAULT_CUTOFF, value_parser = unit_interval_f32)]
     adc_bailout: f32,
+}
+
+/// A command-line number that must be finite and > 0.
+fn positive_f64(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        Ok(_) => Err(format!("must be a finite number > 0, found {text}")),
+        Err(_) => Err(format!("'{text}' is not a number")),
+    }
+}
+
+/// A command-line number that must lie in [0, 1].
+fn unit_interval_f32(text: &str) -> Result<f32, String> {
+    match text.parse::<f32>() {
+        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
+        Ok(_) => Err(format!("must be between 0 and 1, found {text}")),
+        Err(_) => Err(format!("'{text}' is not a number")),
+    }
 }
 
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
@@ -97,7 +116,7 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
         Err(code) => return code,
     };
     let pool = match rayon::ThreadPoolBuilder::new()
-        .num_threads(cli.threads.unwrap_or(0))
+        .num_threads(cli.threads.unwrap_or(0) as usize)
         .build()
     {
         Ok(p) => p,
@@ -146,10 +165,35 @@ fn run(cli: &StudyCli) -> Result<(), String> {
         .map_err(|e| format!("cannot create {}: {e}", shown(&cli.out)))?;
     let csv = cli.csv.clone().unwrap_or(cli.out.join("study.csv"));
     let plot = cli.plot.clone().unwrap_or(cli.out.join("study.png"));
+    let reference_out = cli.out.join("reference.exr");
+    // Every output is checked against every input (scene, its assets, the reference) and the
+    // others, and created now so that an unwritable folder is reported before the runs.
+    let mut guard = Outputs::from_inputs(scene.inputs.iter().map(PathBuf::as_path));
+    if let Some(r) = &cli.reference {
+        guard.input(r);
+    }
+    let mut claim = |path: &Path| -> Result<PendingFile, String> {
+        guard.claim(path).map_err(|e| e.to_string())?;
+        PendingFile::create(path).map_err(|e| e.to_string())
+    };
+    let csv_out = claim(&csv)?;
+    let plot_out = claim(&plot)?;
+    let reference_pending = match cli.reference {
+        Some(_) => None,
+        None => Some(claim(&reference_out)?),
+    };
 
     let reference = match &cli.reference {
         Some(path) => {
             let f = read_image(path).map_err(|e| e.to_string())?;
+            if let Some(i) = f.pixels.iter().position(|p| !p.is_finite()) {
+                return Err(format!(
+                    "the reference {} has a non-finite value (NaN or infinity) at pixel ({}, {})",
+                    shown(path),
+                    i as u32 % f.width,
+                    i as u32 / f.width
+                ));
+            }
             if (f.width, f.height) != (w, h) {
                 return Err(format!(
                     "the reference {} is {}×{}, the scene renders {w}×{h}",
@@ -170,8 +214,11 @@ fn run(cli: &StudyCli) -> Result<(), String> {
             let t = Instant::now();
             let f = study::reference(&scene, n);
             eprintln!("study: reference took {:.2} s", t.elapsed().as_secs_f64());
-            let path = cli.out.join("reference.exr");
-            write_image(&path, &f, ToneMap::Linear, 1.0).map_err(|e| e.to_string())?;
+            let bytes = encode_image(&reference_out, &f, ToneMap::Linear, 1.0)
+                .map_err(|e| e.to_string())?;
+            if let Some(pending) = reference_pending {
+                pending.commit(&bytes).map_err(|e| e.to_string())?;
+            }
             f
         }
     };
@@ -198,7 +245,18 @@ fn run(cli: &StudyCli) -> Result<(), String> {
             r.flip
         );
     });
-    study::write_csv(&csv, &runs).map_err(|e| format!("cannot write {}: {e}", shown(&csv)))?;
+    if let Some(r) = runs
+        .iter()
+        .find(|r| !(r.mse.is_finite() && r.mse_region.is_finite() && r.flip.is_finite()))
+    {
+        return Err(format!(
+            "the {} run with {} shadow rays has a non-finite error (MSE {}, FLIP {}): no results written",
+            r.sampler, r.samples, r.mse, r.flip
+        ));
+    }
+    csv_out
+        .commit(study::csv_text(&runs).as_bytes())
+        .map_err(|e| e.to_string())?;
     let name = cli
         .scene
         .file_name()
@@ -208,7 +266,8 @@ fn run(cli: &StudyCli) -> Result<(), String> {
         Some(r) => format!("region {},{},{},{}", r.x, r.y, r.width, r.height),
         None => "whole image".into(),
     };
-    study::write_plot(&plot, &runs, &format!("{name}: {what}, {w}×{h}"))?;
+    let png = study::plot_png(&runs, &format!("{name}: {what}, {w}×{h}"))?;
+    plot_out.commit(&png).map_err(|e| e.to_string())?;
 
     println!(
         "MSE over the {what}; slopes fitted over runs with ≥ {} shadow rays",
@@ -264,6 +323,15 @@ fn skip_work(cli: &StudyCli) -> Result<(), String> {
         cli.runs
     );
     let rows = study::skip_work(&scene, &base, cli.adc_bailout, cli.runs as usize);
+    if let Some(r) = rows
+        .iter()
+        .find(|r| !(r.flip.is_finite() && r.mse.is_finite()))
+    {
+        return Err(format!(
+            "the {} variant has a non-finite error (MSE {}, FLIP {})",
+            r.name, r.mse, r.flip
+        ));
+    }
     let plain = rows[0].seconds;
     println!(
         "{:<16} {:>9} {:>8} {:>12} {:>10} {:>11}",
