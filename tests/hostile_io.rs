@@ -438,3 +438,41 @@ fn control_characters_in_paths_are_escaped_in_messages() {
     assert!(!msg.contains('\u{1b}'), "{msg}");
     assert_said_once(&msg);
 }
+
+/// A full disk: a 16 KiB tmpfs (mounting needs root; elsewhere the case says it was not run).
+/// The message is the OS's ("No space left on device"), not an encoder's, for every format.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_disk_says_so() {
+    struct Mount(PathBuf);
+    impl Drop for Mount {
+        fn drop(&mut self) {
+            let _ = Command::new("umount").arg(&self.0).status();
+        }
+    }
+    let (_dir, scene) = write_scene(SMALL);
+    let root = tempfile::tempdir().unwrap();
+    let mounted = Command::new("mount")
+        .args(["-t", "tmpfs", "-o", "size=16k", "tmpfs"])
+        .arg(root.path())
+        .stderr(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    if !mounted {
+        eprintln!("a_full_disk_says_so: not run (cannot mount a tmpfs here)");
+        return;
+    }
+    let _mount = Mount(root.path().to_path_buf());
+    // Fill it, so that even a small, well-compressed PNG does not fit.
+    let filler = root.path().join("filler");
+    let _ = std::fs::write(&filler, vec![7u8; 64 << 10]);
+    for ext in ["png", "exr", "ppm"] {
+        let out = root.path().join(format!("out.{ext}"));
+        let o = raytracer(&[&scene, &out, &"--width", &"200", &"--quiet"]);
+        let msg = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{ext}: {msg}");
+        assert!(msg.contains("No space left on device"), "{msg}");
+        assert_said_once(&msg);
+        assert_eq!(names(root.path()), vec!["filler"]);
+    }
+}
