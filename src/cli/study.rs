@@ -1,26 +1,26 @@
 //! `raytracer study SCENE`: how fast each area-light sampler's error falls, per shadow ray and
-//! per second (library code in `raytracer::study`). Writes a CSV of the runs and a log-log plot,
+//! per second (library code in `crate::study`). Writes a CSV of the runs and a log-log plot,
 //! and prints the fitted slopes and the time each sampler needs to reach a target MSE.
 //! `--skip-work` instead times the work-skipping switches against a plain render.
 
-use raytracer::files::shown;
+use crate::files::shown;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Parser;
 
-use raytracer::files::output::{Outputs, PendingFile};
-use raytracer::film::ToneMap;
-use raytracer::image_io::{encode_image, read_image};
-use raytracer::integrator::DEFAULT_CUTOFF;
-use raytracer::metric::Region;
-use raytracer::render::RenderOptions;
-use raytracer::sampling::Method;
-use raytracer::scene::{load, LoadOptions};
-use raytracer::study::{self, StudyOptions};
+use crate::files::output::{Outputs, PendingFile};
+use crate::film::ToneMap;
+use crate::image_io::{encode_image, read_image};
+use crate::integrator::DEFAULT_CUTOFF;
+use crate::metric::Region;
+use crate::render::RenderOptions;
+use crate::sampling::Method;
+use crate::scene::{load, LoadOptions};
+use crate::study::{self, StudyOptions};
 
-use crate::exit_code;
+use super::exit_code;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -110,6 +110,11 @@ fn unit_interval_f32(text: &str) -> Result<f32, String> {
     }
 }
 
+/// Parses the subcommand's command line without running it.
+pub(super) fn try_parse(args: &[std::ffi::OsString]) -> Result<(), clap::Error> {
+    <StudyCli as Parser>::try_parse_from(args).map(drop)
+}
+
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     let cli = match exit_code::parse::<StudyCli>(args) {
         Ok(c) => c,
@@ -141,7 +146,7 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     }
 }
 
-fn load_scene(cli: &StudyCli) -> Result<raytracer::scene::Scene, String> {
+fn load_scene(cli: &StudyCli) -> Result<crate::scene::Scene, String> {
     let options = LoadOptions {
         width: cli.width.or(if cli.quick { Some(48) } else { None }),
         height: cli.height,

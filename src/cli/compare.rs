@@ -2,18 +2,18 @@
 //! CI. Exit status 0 when within the given thresholds, 3 when worse, 1 when an image cannot be
 //! read or the sizes or region do not fit, 2 on a usage error.
 
-use raytracer::files::shown;
+use crate::files::shown;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
 
-use raytracer::files::output::{Outputs, PendingFile};
-use raytracer::film::ToneMap;
-use raytracer::image_io::{encode_image, read_image};
-use raytracer::metric::{flip_map, heat_map, mse, psnr, Region};
+use crate::files::output::{Outputs, PendingFile};
+use crate::film::ToneMap;
+use crate::image_io::{encode_image, read_image};
+use crate::metric::{flip_map, heat_map, mse, psnr, Region};
 
-use crate::exit_code;
+use super::exit_code;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -53,6 +53,11 @@ fn threshold(text: &str) -> Result<f64, String> {
 /// Whether `value` is within `max`; NaN is never within.
 fn within(value: f64, max: f64) -> bool {
     value <= max
+}
+
+/// Parses the subcommand's command line without running it.
+pub(super) fn try_parse(args: &[std::ffi::OsString]) -> Result<(), clap::Error> {
+    <CompareCli as Parser>::try_parse_from(args).map(drop)
 }
 
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
