@@ -6,7 +6,7 @@
 //! | `raytracer SCENE OUT` | [`render`] |
 //! | `raytracer compare REF TEST` | [`compare`] |
 //! | `raytracer study SCENE` | [`study`] |
-//! | `raytracer bench` | [`bench`] |
+//! | `raytracer bench` | [`mod@bench`] |
 
 pub mod bench;
 pub mod compare;
