@@ -190,7 +190,9 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         .num_threads(cli.threads.unwrap_or(0))
         .build()
         .map_err(|e| Failure::Input(anyhow::anyhow!("cannot start worker threads: {e}")))?;
-    let out = pool.install(|| render(&scene, &options));
+    let out = pool
+        .install(|| render(&scene, &options))
+        .map_err(|e| Failure::Input(e.into()))?;
     if out.cancelled {
         return Err(Failure::Interrupted);
     }

@@ -96,6 +96,7 @@ pub fn render_with(scene: &Scene, method: Method, samples: u32, seed: u64) -> Re
             ..RenderOptions::default()
         },
     )
+    .expect("the pixel buffers of a loaded scene fit in memory")
 }
 
 /// The reference: jittered shadow rays on a `k×k` grid with `k² ≥ samples`, under a seed no run
@@ -460,7 +461,8 @@ pub fn skip_work(scene: &Scene, base: &RenderOptions, cutoff: f32, runs: usize) 
         let mut times = Vec::new();
         let mut last = None;
         for _ in 0..runs.max(1) {
-            let r = render(scene, &options);
+            let r =
+                render(scene, &options).expect("the pixel buffers of a loaded scene fit in memory");
             times.push(r.render_time.as_secs_f64());
             last = Some(r);
         }
