@@ -200,7 +200,9 @@ fn run(cli: &Cli, interrupted: &Arc<AtomicBool>) -> Result<(), Failure> {
         .num_threads(cli.threads.unwrap_or(0) as usize)
         .build()
         .map_err(|e| Failure::Input(format!("cannot start worker threads: {e}")))?;
-    let out = pool.install(|| render(&scene, &options));
+    let out = pool
+        .install(|| render(&scene, &options))
+        .map_err(|e| Failure::Input(e.to_string()))?;
     if out.cancelled || interrupted.load(Ordering::Relaxed) {
         return Err(Failure::Interrupted);
     }
@@ -226,8 +228,8 @@ fn run(cli: &Cli, interrupted: &Arc<AtomicBool>) -> Result<(), Failure> {
     Ok(())
 }
 
-/// A flag that Ctrl-C (SIGINT), SIGTERM or SIGHUP sets, so the render stops within a fraction of
-/// a second, the temporary output file is removed and nothing is written. If the handler cannot
+/// A flag that Ctrl-C (SIGINT), SIGTERM or SIGHUP sets, so the render stops within one camera
+/// sample or shading point (a fraction of a second), the temporary output file is removed and nothing is written. If the handler cannot
 /// be installed, the signals keep their default effect, which also writes nothing: the image is
 /// only ever renamed into place complete.
 fn interrupt_flag() -> Arc<AtomicBool> {

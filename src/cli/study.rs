@@ -217,7 +217,7 @@ fn run(cli: &StudyCli) -> Result<(), String> {
             };
             eprintln!("study: reference, jittered, {n} shadow rays per area light, {w}×{h} …");
             let t = Instant::now();
-            let f = study::reference(&scene, n);
+            let f = study::reference(&scene, n).map_err(|e| e.to_string())?;
             eprintln!("study: reference took {:.2} s", t.elapsed().as_secs_f64());
             let bytes = encode_image(&reference_out, &f, ToneMap::Linear, 1.0)
                 .map_err(|e| e.to_string())?;
@@ -249,7 +249,8 @@ fn run(cli: &StudyCli) -> Result<(), String> {
             r.mse_region,
             r.flip
         );
-    });
+    })
+    .map_err(|e| e.to_string())?;
     if let Some(r) = runs
         .iter()
         .find(|r| !(r.mse.is_finite() && r.mse_region.is_finite() && r.flip.is_finite()))
@@ -327,7 +328,8 @@ fn skip_work(cli: &StudyCli) -> Result<(), String> {
         cli.spp,
         cli.runs
     );
-    let rows = study::skip_work(&scene, &base, cli.adc_bailout, cli.runs as usize);
+    let rows = study::skip_work(&scene, &base, cli.adc_bailout, cli.runs as usize)
+        .map_err(|e| e.to_string())?;
     if let Some(r) = rows
         .iter()
         .find(|r| !(r.flip.is_finite() && r.mse.is_finite()))

@@ -17,7 +17,7 @@ use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
 
 use super::error::{SceneError, Warning};
-use super::json::{Node, Source};
+use super::json::{NameIndex, Node, Source};
 use super::mesh_file::{read_mesh, MeshData};
 use super::{RenderMode, Scene, Variant};
 use crate::camera::{Camera, Handedness, Lens};
@@ -148,8 +148,34 @@ const SHAPE_TYPES: &[&str] = &[
 ];
 const LIGHT_TYPES: &[&str] = &["pointlight", "arealight"];
 
-/// Materials defined once by name (`"materials": [{"name": "red", …}]`) and referred to by it.
-type Library<'a, 't> = Vec<(String, Node<'a, 't>)>;
+/// Materials defined once by name (`"materials": [{"name": "red", …}]`) and referred to by it,
+/// in file order; a name defined twice means its first definition. Found through an index, as a
+/// scene can define and use tens of thousands.
+#[derive(Default)]
+struct Library<'a, 't> {
+    defs: Vec<(String, Node<'a, 't>)>,
+    index: NameIndex,
+}
+
+impl<'a, 't> Library<'a, 't> {
+    fn new() -> Self {
+        Self::default()
+    }
+
+    fn push(&mut self, def: (String, Node<'a, 't>)) {
+        self.index.push(&def.0);
+        self.defs.push(def);
+    }
+
+    fn find(&self, name: &str) -> Option<&(String, Node<'a, 't>)> {
+        let i = self.index.find(name, |i| self.defs[i].0.as_str())?;
+        Some(&self.defs[i])
+    }
+
+    fn names(&self) -> Vec<&str> {
+        self.defs.iter().map(|(n, _)| n.as_str()).collect()
+    }
+}
 
 struct Loader<'o> {
     options: &'o LoadOptions,
@@ -1170,10 +1196,10 @@ impl<'o> Loader<'o> {
         let mut m = Material::default();
         let mut node = s.get("material");
         if let Some(named) = node.as_ref().and_then(|n| n.str().ok()) {
-            match library.iter().find(|(name, _)| name == named) {
+            match library.find(named) {
                 Some((_, def)) => node = Some(def.clone()),
                 None => {
-                    let names: Vec<&str> = library.iter().map(|(n, _)| n.as_str()).collect();
+                    let names = library.names();
                     let at = node.unwrap_or_else(|| s.clone());
                     return Err(at.error(format!(
                         "no material named '{named}' (the scene defines: {})",
