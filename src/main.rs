@@ -99,6 +99,10 @@ struct Cli {
     /// Refuse scene files larger than this many bytes.
     #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_SCENE_BYTES)]
     max_scene_bytes: u64,
+    /// Refuse textures with more texels (width × height) than this, read from the image's header
+    /// before decoding (a texture takes 12 bytes per texel; the default is 8192², 768 MiB).
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_TEXTURE_PIXELS)]
+    max_texture_pixels: u64,
     /// No progress bar, no warnings, no summary line.
     #[arg(short, long)]
     quiet: bool,
@@ -175,6 +179,7 @@ fn run(cli: &Cli, interrupted: &Arc<AtomicBool>) -> Result<(), Failure> {
         max_triangles: cli.max_triangles,
         max_light_samples: cli.max_light_samples,
         max_scene_bytes: cli.max_scene_bytes,
+        max_texture_pixels: cli.max_texture_pixels,
     };
     let scene = load(&cli.scene, &load_options).map_err(|e| Failure::Input(e.to_string()))?;
     if !cli.quiet {
