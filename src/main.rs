@@ -103,6 +103,9 @@ struct Cli {
     /// before decoding (a texture takes 12 bytes per texel; the default is 8192², 768 MiB).
     #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_TEXTURE_PIXELS)]
     max_texture_pixels: u64,
+    /// Refuse mesh files (PLY, OBJ) larger than this many bytes; they are read whole.
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_MESH_BYTES)]
+    max_mesh_bytes: u64,
     /// No progress bar, no warnings, no summary line.
     #[arg(short, long)]
     quiet: bool,
@@ -180,6 +183,7 @@ fn run(cli: &Cli, interrupted: &Arc<AtomicBool>) -> Result<(), Failure> {
         max_light_samples: cli.max_light_samples,
         max_scene_bytes: cli.max_scene_bytes,
         max_texture_pixels: cli.max_texture_pixels,
+        max_mesh_bytes: cli.max_mesh_bytes,
     };
     let scene = load(&cli.scene, &load_options).map_err(|e| Failure::Input(e.to_string()))?;
     if !cli.quiet {

@@ -18,7 +18,7 @@ use std::path::{Component, Path, PathBuf};
 
 use super::error::{SceneError, Warning};
 use super::json::{Node, Source};
-use super::mesh_file::{read_mesh, MeshData};
+use super::mesh_file::{read_mesh_with, MeshData, MeshLimits};
 use super::{RenderMode, Scene, Variant};
 use crate::camera::{Camera, Handedness, Lens};
 use crate::files::input::{self, SizeLimit};
@@ -45,6 +45,9 @@ pub const DEFAULT_MAX_SCENE_BYTES: u64 = 64 << 20;
 /// texture is stored as 12-byte float texels, so this is 768 MiB; the check uses the image's
 /// header, before anything is decoded, so a small file claiming a huge image fails at once.
 pub const DEFAULT_MAX_TEXTURE_PIXELS: u64 = 1 << 26;
+/// Default cap on a mesh file's size: 2 GiB. Mesh files are read whole; the largest real ones
+/// are tens of MB, and the reader needs a few times the file's size in memory on top.
+pub const DEFAULT_MAX_MESH_BYTES: u64 = 2 << 30;
 /// Index of refraction of a transmissive material that gives none (crown glass).
 pub const DEFAULT_ETA: f32 = 1.5;
 /// `nbounces` when a file has none.
@@ -67,6 +70,8 @@ pub struct LoadOptions {
     pub max_scene_bytes: u64,
     /// Most texels (`width × height`) one texture may have, checked from the image's header.
     pub max_texture_pixels: u64,
+    /// Largest mesh file accepted, in bytes.
+    pub max_mesh_bytes: u64,
 }
 
 impl Default for LoadOptions {
@@ -81,6 +86,7 @@ impl Default for LoadOptions {
             max_light_samples: DEFAULT_MAX_LIGHT_SAMPLES,
             max_scene_bytes: DEFAULT_MAX_SCENE_BYTES,
             max_texture_pixels: DEFAULT_MAX_TEXTURE_PIXELS,
+            max_mesh_bytes: DEFAULT_MAX_MESH_BYTES,
         }
     }
 }
@@ -945,7 +951,13 @@ impl<'o> Loader<'o> {
         let mut data = if let Some(fnode) = s.get_any(&file_keys) {
             let rel = fnode.str()?;
             let path = self.resolve(&fnode, rel)?;
-            let mut data = read_mesh(&path).map_err(|e| fnode.error(e.to_string()))?;
+            let limits = MeshLimits {
+                max_bytes: self.options.max_mesh_bytes,
+                max_triangles: self.options.max_triangles,
+                triangles_before: self.triangles,
+            };
+            let mut data =
+                read_mesh_with(&path, &limits).map_err(|e| fnode.error(e.to_string()))?;
             // PLY and OBJ files put v = 0 at the bottom of the image (the OpenGL convention of
             // the tools that write them); textures here have v = 0 at the top row.
             if let Some(uvs) = data.uvs.as_mut() {
