@@ -854,7 +854,7 @@ mod tests {
     /// A small JPEG (RGB, or gray when `gray`), as the `image` crate encodes it.
     fn jpeg_bytes(width: u32, height: u32, gray: bool) -> Vec<u8> {
         let mut out = Vec::new();
-        let mut encoder = image::codecs::jpeg::JpegEncoder::new_with_quality(&mut out, 90);
+        let encoder = image::codecs::jpeg::JpegEncoder::new_with_quality(&mut out, 90);
         let (channels, color) = if gray {
             (1, ExtendedColorType::L8)
         } else {
