@@ -45,8 +45,8 @@ pub const DEFAULT_MAX_SCENE_BYTES: u64 = 64 << 20;
 /// texture is stored as 12-byte float texels, so this is 768 MiB; the check uses the image's
 /// header, before anything is decoded, so a small file claiming a huge image fails at once.
 pub const DEFAULT_MAX_TEXTURE_PIXELS: u64 = 1 << 26;
-/// Default cap on a mesh file's size: 2 GiB. Mesh files are read whole; the largest real ones
-/// are tens of MB, and the reader needs a few times the file's size in memory on top.
+/// Default cap on a mesh file's size: 2 GiB. Mesh files are read whole into memory; the largest
+/// in the coursework corpus are about 1 MB.
 pub const DEFAULT_MAX_MESH_BYTES: u64 = 2 << 30;
 /// Index of refraction of a transmissive material that gives none (crown glass).
 pub const DEFAULT_ETA: f32 = 1.5;
