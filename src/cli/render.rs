@@ -93,9 +93,17 @@ struct Cli {
     /// Refuse area lights that take more shadow rays per shading point than this.
     #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_LIGHT_SAMPLES)]
     max_light_samples: u32,
-    /// Refuse scene files larger than this many bytes.
+    /// Refuse scene files larger than this many bytes (checked before reading; the parsed
+    /// document takes about ten times the file's size).
     #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_SCENE_BYTES)]
     max_scene_bytes: u64,
+    /// Refuse textures with more texels (width × height) than this, read from the image's header
+    /// before decoding (a texture takes 12 bytes per texel; the default is 8192², 768 MiB).
+    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_TEXTURE_PIXELS)]
+    max_texture_pixels: u64,
+    /// Refuse mesh files (PLY, OBJ) larger than this many bytes; they are read whole.
+    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_MESH_BYTES)]
+    max_mesh_bytes: u64,
     /// No progress bar, no warnings, no summary line.
     #[arg(short, long)]
     quiet: bool,
@@ -166,6 +174,8 @@ fn run(cli: &Cli, interrupted: &Arc<AtomicBool>) -> Result<(), Failure> {
         max_triangles: cli.max_triangles,
         max_light_samples: cli.max_light_samples,
         max_scene_bytes: cli.max_scene_bytes,
+        max_texture_pixels: cli.max_texture_pixels,
+        max_mesh_bytes: cli.max_mesh_bytes,
     };
     let scene = load(&cli.scene, &load_options).map_err(|e| Failure::Input(e.to_string()))?;
     if !cli.quiet {
