@@ -26,8 +26,9 @@ use image::codecs::openexr::OpenExrEncoder;
 use image::codecs::png::PngEncoder;
 use image::{ColorType, ExtendedColorType, ImageDecoder, ImageEncoder, ImageReader, Limits};
 
+use crate::files::input::{self, SizeLimit};
 use crate::files::output::{write_atomic, OutputError};
-use crate::files::{input, shown};
+use crate::files::shown;
 use crate::film::{to_rgb8, Film, ToneMap};
 
 /// The extensions [`write_image`] accepts, as listed in error messages.
@@ -62,7 +63,23 @@ impl Default for ReadLimits {
     }
 }
 
+/// Most bytes an image file may hold per allowed pixel: an ASCII PPM spends up to 12 characters
+/// per pixel on its values alone; this leaves room for generous whitespace and comments.
+const MAX_FILE_BYTES_PER_PIXEL: u64 = 64;
+
 impl ReadLimits {
+    /// The file-size cap that goes with the pixel limit: no honest encoding of an allowed image
+    /// is larger (decoders such as JPEG's read the whole file into memory first).
+    fn file_limit(&self) -> SizeLimit {
+        SizeLimit {
+            bytes: self
+                .max_pixels
+                .saturating_mul(MAX_FILE_BYTES_PER_PIXEL)
+                .saturating_add(DECODER_HEADROOM),
+            flag: self.flag.unwrap_or(""),
+        }
+    }
+
     /// The `image` crate's limits that match: no side longer than the pixel limit, and no more
     /// memory than the largest allowed image takes decoded, plus working memory.
     fn decoder_limits(&self) -> Limits {
@@ -337,6 +354,7 @@ pub fn read_image_with(path: &Path, limits: &ReadLimits) -> Result<Film, ImageEr
         },
     };
     let file = input::open(path).map_err(open_err)?;
+    input::checked_size(&file, limits.file_limit()).map_err(open_err)?;
     // The format from the contents, else from the extension (as `ImageReader::open` does).
     let mut reader = ImageReader::new(BufReader::new(file))
         .with_guessed_format()

@@ -476,3 +476,33 @@ fn a_full_disk_says_so() {
         assert_eq!(names(root.path()), vec!["filler"]);
     }
 }
+
+/// An image file larger than any honest encoding of an allowed image is refused from its size
+/// (decoders such as JPEG's read the whole file first): a sparse file, never read.
+#[test]
+fn an_oversized_image_file_is_refused_from_its_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let tex = dir.path().join("huge.jpg");
+    std::fs::File::create(&tex)
+        .unwrap()
+        .set_len(200 << 20)
+        .unwrap();
+    let scene = dir.path().join("scene.json");
+    std::fs::write(
+        &scene,
+        r#"{ "camera": { "width": 8, "height": 6, "fov": 40 },
+             "scene": { "shapes": [ { "type": "sphere", "center": [0, 0, -3], "radius": 1,
+                                      "material": { "texture": "huge.jpg" } } ] } }"#,
+    )
+    .unwrap();
+    let out = dir.path().join("out.png");
+    let o = raytracer(&[&scene, &out, &"--max-texture-pixels", &"1024"]);
+    let msg = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{msg}");
+    assert!(
+        msg.contains("huge.jpg") && msg.contains("over the limit"),
+        "{msg}"
+    );
+    assert!(msg.contains("--max-texture-pixels"), "{msg}");
+    assert!(!out.exists());
+}

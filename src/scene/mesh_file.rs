@@ -1196,7 +1196,6 @@ mod tests {
     use super::*;
     use std::fs;
     use std::sync::atomic::{AtomicUsize, Ordering};
-    use std::time::{Duration, Instant};
 
     /// A unique scratch folder under the system temp dir, removed on drop.
     struct TempDir(PathBuf);
@@ -1506,8 +1505,9 @@ mod tests {
 
     #[test]
     fn lying_huge_counts_fail_fast() {
+        // Each count is refused from the header, before anything is allocated for it (an
+        // allocation of that size would abort the test process).
         let dir = TempDir::new("huge");
-        let start = Instant::now();
         for (format, count) in [
             ("binary_little_endian", "4000000000"),
             ("binary_big_endian", "18446744073709551615"),
@@ -1547,7 +1547,6 @@ mod tests {
         bytes.extend([0u8; 64]);
         let err = read_ply(&dir.write("list.ply", bytes)).unwrap_err();
         assert!(err.to_string().contains("face"), "{err}");
-        assert!(start.elapsed() < Duration::from_secs(5));
     }
 
     #[test]
