@@ -24,8 +24,9 @@ use super::exit_code;
     name = "raytracer",
     version,
     about = "Renders a coursework JSON scene to a PPM, PNG or EXR image.",
-    after_help = "Exit codes: 0 rendered; 1 the scene or an asset is bad (or the image could not be written); 2 usage error; 130 interrupted (nothing written).\n\
+    after_help = "Exit codes: 0 rendered; 1 the scene or an asset is bad (or the image could not be written); 2 usage error (also: the output is one of the scene's files); 130 interrupted (nothing written).\n\
                   Output format by extension: .ppm (binary P6), .png (8-bit), .exr (linear 32-bit float, not tone-mapped).\n\
+                  Inputs must be regular files (not FIFOs or devices); the image is written atomically and never onto the scene, a texture or a mesh it uses.\n\
                   Image comparison: raytracer compare --help. Benchmarks: raytracer bench --help."
 )]
 struct Cli {
