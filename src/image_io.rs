@@ -440,12 +440,15 @@ fn to_rgb_f32(color: ColorType, raw: &[u8], pixels: usize) -> Result<Vec<Vec3>, 
         let mut out = Vec::new();
         out.try_reserve_exact(pixels)
             .map_err(|_| Conversion::OutOfMemory)?;
-        let at = |px: &[u8], i: usize| sample(&px[i * size..(i + 1) * size]);
         let chunks = raw.chunks_exact(channels * size);
         if channels < 3 {
-            out.extend(chunks.map(|px| Vec3::splat(at(px, 0))));
+            out.extend(chunks.map(|px| Vec3::splat(sample(&px[..size]))));
         } else {
-            out.extend(chunks.map(|px| Vec3::new(at(px, 0), at(px, 1), at(px, 2))));
+            out.extend(chunks.map(|px| {
+                let (r, rest) = px.split_at(size);
+                let (g, rest) = rest.split_at(size);
+                Vec3::new(sample(r), sample(g), sample(&rest[..size]))
+            }));
         }
         Ok(out)
     }

@@ -183,13 +183,6 @@ impl Open {
     }
 }
 
-/// What a shading point gives: its final radiance, or its direct light and the rays still to
-/// trace.
-enum Shaded {
-    Done(Vec3),
-    Open(Vec3, [Option<Branch>; 2]),
-}
-
 /// Traces rays through one scene. Cheap to create; one per worker.
 pub struct Tracer<'a> {
     pub scene: &'a Scene,
@@ -238,10 +231,11 @@ impl<'a> Tracer<'a> {
     /// Radiance along a camera ray: the ray tree walked depth first, each shading point's
     /// radiance added, scaled, to its parent's once all its branches are done.
     fn radiance(&mut self, ray: &Ray, key: &SampleKey) -> Vec3 {
-        let (color, branches) = match self.shade(ray, 0, key, 1.0) {
-            Shaded::Done(c) => return c,
-            Shaded::Open(c, b) => (c, b),
-        };
+        let mut branches = [None, None];
+        let color = self.shade(ray, 0, key, 1.0, &mut branches);
+        if branches.iter().all(Option::is_none) {
+            return color;
+        }
         let mut open = std::mem::take(&mut self.open);
         open.clear();
         open.push(Open {
@@ -271,13 +265,22 @@ impl<'a> Tracer<'a> {
             }
             self.budget -= 1;
             self.counts.secondary += 1;
-            match self.shade(&branch.ray, branch.depth, &branch.key, branch.weight) {
-                Shaded::Done(c) => top.color += branch.factor * c,
-                Shaded::Open(color, branches) => open.push(Open {
+            let mut branches = [None, None];
+            let color = self.shade(
+                &branch.ray,
+                branch.depth,
+                &branch.key,
+                branch.weight,
+                &mut branches,
+            );
+            if branches.iter().all(Option::is_none) {
+                top.color += branch.factor * color;
+            } else {
+                open.push(Open {
                     color,
                     factor: branch.factor,
                     branches,
-                }),
+                });
             }
         };
         self.open = open;
@@ -287,16 +290,25 @@ impl<'a> Tracer<'a> {
     /// The direct light at the point `ray` hits at `depth` and the reflection and refraction rays
     /// it spawns; `weight` is the share of the camera sample's value the ray carries (for the
     /// cut-off).
-    fn shade(&mut self, ray: &Ray, depth: u32, key: &SampleKey, weight: f32) -> Shaded {
+    /// The rays are written to `branches` (refracted first, then reflected), which the caller
+    /// passes empty; the point is finished when both stay empty.
+    fn shade(
+        &mut self,
+        ray: &Ray,
+        depth: u32,
+        key: &SampleKey,
+        weight: f32,
+        branches: &mut [Option<Branch>; 2],
+    ) -> Vec3 {
         let scene = self.scene;
         let Some((prim, cand)) = self.accel.closest(&scene.primitives, ray, f32::INFINITY) else {
-            return Shaded::Done(match scene.mode {
+            return match scene.mode {
                 RenderMode::Binary => Vec3::ZERO,
                 RenderMode::Phong => scene.background,
-            });
+            };
         };
         if scene.mode == RenderMode::Binary {
-            return Shaded::Done(BINARY_HIT);
+            return BINARY_HIT;
         }
         let primitive = &scene.primitives[prim as usize];
         let hit = primitive.hit(ray, cand, prim, &scene.meshes);
@@ -331,7 +343,7 @@ impl<'a> Tracer<'a> {
             }
             for s in 0..count {
                 if s % SHADOW_RAYS_PER_CANCEL_CHECK == 0 && self.cancelled() {
-                    return Shaded::Done(color);
+                    return color;
                 }
                 let u = if count == 1 {
                     Vec2::splat(0.5)
@@ -364,7 +376,7 @@ impl<'a> Tracer<'a> {
         }
 
         if depth >= scene.nbounces.min(self.max_depth) {
-            return Shaded::Done(color);
+            return color;
         }
         let branch = |dir: Vec3, id: u64, factor: f32| Branch {
             ray: hit.spawn(dir),
@@ -373,7 +385,6 @@ impl<'a> Tracer<'a> {
             weight: weight * factor,
             factor,
         };
-        let mut branches = [None, None];
         let mut reflect_weight = material.kr;
         if material.kt > 0.0 {
             let eta = if front {
@@ -395,11 +406,7 @@ impl<'a> Tracer<'a> {
             let r = reflect(ray.dir, n).normalize();
             branches[1] = Some(branch(r, 1, reflect_weight));
         }
-        if branches.iter().all(Option::is_none) {
-            Shaded::Done(color)
-        } else {
-            Shaded::Open(color, branches)
-        }
+        color
     }
 
     /// Whether a secondary ray of accumulated `weight` passes the cut-off (always, without one).
