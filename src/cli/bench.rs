@@ -15,7 +15,7 @@ use crate::bench::{
     table1, throughput, TableOptions, Throughput, TABLE_HEADER,
 };
 
-use super::exit_code;
+use super::{exit_code, values};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -75,13 +75,10 @@ pub fn main(args: &[OsString]) -> ExitCode {
         eprintln!("error: --none-limit must be a finite number of seconds, at least 0");
         return ExitCode::from(exit_code::USAGE);
     }
-    let pool = match rayon::ThreadPoolBuilder::new()
-        .num_threads(cli.threads.unwrap_or(0) as usize)
-        .build()
-    {
+    let pool = match values::thread_pool(cli.threads.map(u64::from)) {
         Ok(p) => p,
         Err(e) => {
-            eprintln!("error: cannot start worker threads: {e}");
+            eprintln!("error: {e}");
             return ExitCode::from(exit_code::BAD_INPUT);
         }
     };

@@ -13,6 +13,7 @@ pub mod compare;
 pub mod exit_code;
 pub mod render;
 pub mod study;
+pub mod values;
 
 use std::ffi::OsString;
 use std::process::ExitCode;

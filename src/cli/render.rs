@@ -17,7 +17,7 @@ use crate::render::{render, RenderOptions};
 use crate::sampling::Method;
 use crate::scene::{load, LoadOptions};
 
-use super::exit_code;
+use super::{exit_code, values};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -50,7 +50,7 @@ struct Cli {
     adaptive_lights: bool,
     /// Skip reflection/refraction rays whose accumulated weight is below X (POV-Ray's
     /// adc_bailout; 1/255 = 0.0039 is one 8-bit step).
-    #[arg(long, value_name = "X", value_parser = unit_interval_f32)]
+    #[arg(long, value_name = "X", value_parser = values::unit_interval_f32)]
     adc_bailout: Option<f32>,
     /// Seed for every random number (the image is a pure function of the scene, options and seed).
     #[arg(long, default_value_t = 0)]
@@ -65,7 +65,7 @@ struct Cli {
     #[arg(long, default_value = "linear")]
     tonemap: ToneMap,
     /// Multiplies the scene's exposure (a finite number ≥ 0, as in the scene file).
-    #[arg(long, default_value_t = 1.0, value_parser = non_negative_f32)]
+    #[arg(long, default_value_t = 1.0, value_parser = values::non_negative_f32)]
     exposure: f32,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
@@ -207,10 +207,7 @@ fn run(cli: &Cli, interrupted: &Arc<AtomicBool>) -> Result<(), Failure> {
         progress: !cli.quiet && std::io::stderr().is_terminal(),
         cancel: Some(interrupted.clone()),
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(cli.threads.unwrap_or(0) as usize)
-        .build()
-        .map_err(|e| Failure::Input(format!("cannot start worker threads: {e}")))?;
+    let pool = values::thread_pool(cli.threads).map_err(Failure::Input)?;
     let out = pool
         .install(|| render(&scene, &options))
         .map_err(|e| Failure::Input(e.to_string()))?;
@@ -248,24 +245,4 @@ fn interrupt_flag() -> Arc<AtomicBool> {
     let setter = flag.clone();
     let _ = ctrlc::set_handler(move || setter.store(true, Ordering::Relaxed));
     flag
-}
-
-/// A command-line number that must be finite and ≥ 0.
-fn non_negative_f32(text: &str) -> Result<f32, String> {
-    let v: f32 = text
-        .parse()
-        .map_err(|_| format!("'{text}' is not a number"))?;
-    if !(v.is_finite() && v >= 0.0) {
-        return Err(format!("must be a finite number ≥ 0, found {text}"));
-    }
-    Ok(v)
-}
-
-/// A command-line number that must lie in [0, 1].
-fn unit_interval_f32(text: &str) -> Result<f32, String> {
-    let v = non_negative_f32(text)?;
-    if v > 1.0 {
-        return Err(format!("must be between 0 and 1, found {text}"));
-    }
-    Ok(v)
 }

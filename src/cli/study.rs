@@ -20,7 +20,7 @@ use crate::sampling::Method;
 use crate::scene::{load, LoadOptions};
 use crate::study::{self, StudyOptions};
 
-use super::exit_code;
+use super::{exit_code, values};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -59,7 +59,7 @@ struct StudyCli {
     reference_samples: u32,
     /// Target MSE for the equal-error times (default: what random reaches at 256 samples, or at
     /// its largest count if that is fewer).
-    #[arg(long, value_parser = positive_f64)]
+    #[arg(long, value_parser = values::positive_f64)]
     target_mse: Option<f64>,
     /// Samplers to run, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "random,jittered,sobol")]
@@ -88,26 +88,8 @@ struct StudyCli {
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=65536))]
     spp: u32,
     /// Cut-off for --skip-work's adc-bailout runs (between 0 and 1).
-    #[arg(long, default_value_t = DEFAULT_CUTOFF, value_parser = unit_interval_f32)]
+    #[arg(long, default_value_t = DEFAULT_CUTOFF, value_parser = values::unit_interval_f32)]
     adc_bailout: f32,
-}
-
-/// A command-line number that must be finite and > 0.
-fn positive_f64(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-        Ok(_) => Err(format!("must be a finite number > 0, found {text}")),
-        Err(_) => Err(format!("'{text}' is not a number")),
-    }
-}
-
-/// A command-line number that must lie in [0, 1].
-fn unit_interval_f32(text: &str) -> Result<f32, String> {
-    match text.parse::<f32>() {
-        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
-        Ok(_) => Err(format!("must be between 0 and 1, found {text}")),
-        Err(_) => Err(format!("'{text}' is not a number")),
-    }
 }
 
 /// Parses the subcommand's command line without running it.
@@ -120,13 +102,10 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
         Ok(c) => c,
         Err(code) => return code,
     };
-    let pool = match rayon::ThreadPoolBuilder::new()
-        .num_threads(cli.threads.unwrap_or(0) as usize)
-        .build()
-    {
+    let pool = match values::thread_pool(cli.threads) {
         Ok(p) => p,
         Err(e) => {
-            eprintln!("error: cannot start worker threads: {e}");
+            eprintln!("error: {e}");
             return ExitCode::from(exit_code::BAD_INPUT);
         }
     };
