@@ -460,6 +460,7 @@ fn table_row(
     }
     let (render, out) = timed(options.runs, || {
         render_with_accel(scene, &accel, &render_options)
+            .expect("the pixel buffers of a loaded scene fit in memory")
     });
     row.render = Some(render);
     row.rays = out.counts.total();
@@ -753,11 +754,20 @@ pub fn throughput(g: u32, s: u32, runs: usize, leaf_size: usize) -> Throughput {
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build();
     let (render_single, out) = match one {
         Ok(pool) => timed(runs, || {
-            pool.install(|| render_with_accel(&area, &accel, &options))
+            pool.install(|| {
+                render_with_accel(&area, &accel, &options)
+                    .expect("the pixel buffers of a loaded scene fit in memory")
+            })
         }),
-        Err(_) => timed(runs, || render_with_accel(&area, &accel, &options)),
+        Err(_) => timed(runs, || {
+            render_with_accel(&area, &accel, &options)
+                .expect("the pixel buffers of a loaded scene fit in memory")
+        }),
     };
-    let (render_parallel, _) = timed(runs, || render_with_accel(&area, &accel, &options));
+    let (render_parallel, _) = timed(runs, || {
+        render_with_accel(&area, &accel, &options)
+            .expect("the pixel buffers of a loaded scene fit in memory")
+    });
     let stats = accel.stats().unwrap_or_default();
     Throughput {
         g,

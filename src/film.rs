@@ -32,6 +32,20 @@ impl Film {
         }
     }
 
+    /// A black film of the given size, or `None` when its pixels cannot be allocated (too many
+    /// for the address space, or refused by the allocator).
+    pub fn try_new(width: u32, height: u32) -> Option<Film> {
+        let len = (width as usize).checked_mul(height as usize)?;
+        let mut pixels = Vec::new();
+        pixels.try_reserve_exact(len).ok()?;
+        pixels.resize(len, Vec3::ZERO);
+        Some(Film {
+            width,
+            height,
+            pixels,
+        })
+    }
+
     /// A film from existing pixels (row-major, first row at the top);
     /// `pixels.len()` must be `width * height`.
     pub fn from_pixels(width: u32, height: u32, pixels: Vec<Vec3>) -> Film {

@@ -8,24 +8,101 @@
 //!
 //! Reading ([`read_image`]) accepts PNG, JPEG, PPM (ASCII P3 and binary P6) and EXR. 8-bit
 //! values are returned as `byte / 255` with no gamma decoding, matching the renderer's default
-//! linear output, so renders and references can be compared directly. Decoding uses the
-//! `image` crate's default resource limits, and every failure is an [`ImageError`] naming the
-//! file; malformed input never panics.
+//! linear output, so renders and references can be compared directly. Every failure is an
+//! [`ImageError`] naming the file; malformed input never panics.
+//!
+//! Reading is bounded by [`ReadLimits`]: the size is read from the file's header and checked
+//! against the pixel limit before anything is decoded, the `image` crate's own limits (width,
+//! height, allocation) are set to match, and the decoded buffer and the float pixels are
+//! allocated fallibly, so a small file that claims a huge image (a decompression bomb) is an
+//! error, not an abort. A JPEG whose data ends before its end-of-image marker is an error too,
+//! as a truncated PNG is.
 
-use std::io::{self, BufReader};
+use std::io::{self, BufRead, BufReader, Read, Seek};
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 use image::codecs::openexr::OpenExrEncoder;
 use image::codecs::png::PngEncoder;
-use image::{ExtendedColorType, ImageEncoder, ImageReader};
+use image::{ColorType, ExtendedColorType, ImageDecoder, ImageEncoder, ImageReader, Limits};
 
+use crate::files::input::{self, SizeLimit};
 use crate::files::output::{write_atomic, OutputError};
-use crate::files::{input, shown};
+use crate::files::shown;
 use crate::film::{to_rgb8, Film, ToneMap};
 
 /// The extensions [`write_image`] accepts, as listed in error messages.
 const SUPPORTED_EXTENSIONS: &str = ".ppm, .png, .exr";
+
+/// Default cap on the pixels of an image [`read_image`] reads: 2^27 (about 134 megapixels), the
+/// largest render the scene loader allows by default, so any render can be read back.
+pub const DEFAULT_MAX_READ_PIXELS: u64 = 1 << 27;
+
+/// Bytes of decoder working memory allowed beyond the decoded image itself.
+const DECODER_HEADROOM: u64 = 64 << 20;
+
+/// The largest decoded pixel the `image` crate produces: RGBA with 32-bit float channels.
+const MAX_BYTES_PER_PIXEL: u64 = 16;
+
+/// How large an image [`read_image_with`] accepts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ReadLimits {
+    /// Most pixels (`width × height`) the image may have. The decoder may allocate at most
+    /// 16 bytes per allowed pixel (RGBA 32-bit float) plus 64 MiB of working memory.
+    pub max_pixels: u64,
+    /// The command-line flag that raises the limit, named in messages; `None` where there is none.
+    pub flag: Option<&'static str>,
+}
+
+impl Default for ReadLimits {
+    fn default() -> Self {
+        ReadLimits {
+            max_pixels: DEFAULT_MAX_READ_PIXELS,
+            flag: None,
+        }
+    }
+}
+
+/// Most bytes an image file may hold per allowed pixel: an ASCII PPM spends up to 12 characters
+/// per pixel on its values alone; this leaves room for generous whitespace and comments.
+const MAX_FILE_BYTES_PER_PIXEL: u64 = 64;
+
+impl ReadLimits {
+    /// The file-size cap that goes with the pixel limit: no honest encoding of an allowed image
+    /// is larger (decoders such as JPEG's read the whole file into memory first).
+    fn file_limit(&self) -> SizeLimit {
+        SizeLimit {
+            bytes: self
+                .max_pixels
+                .saturating_mul(MAX_FILE_BYTES_PER_PIXEL)
+                .saturating_add(DECODER_HEADROOM),
+            flag: self.flag.unwrap_or(""),
+        }
+    }
+
+    /// The `image` crate's limits that match: no side longer than the pixel limit, and no more
+    /// memory than the largest allowed image takes decoded, plus working memory.
+    fn decoder_limits(&self) -> Limits {
+        let side = u32::try_from(self.max_pixels).unwrap_or(u32::MAX);
+        let mut limits = Limits::default();
+        limits.max_image_width = Some(side);
+        limits.max_image_height = Some(side);
+        limits.max_alloc = Some(
+            self.max_pixels
+                .saturating_mul(MAX_BYTES_PER_PIXEL)
+                .saturating_add(DECODER_HEADROOM),
+        );
+        limits
+    }
+}
+
+/// " (raise it with FLAG)", or nothing where no flag raises it.
+fn raise_hint(flag: &Option<&'static str>) -> String {
+    match flag {
+        Some(flag) => format!(" (raise it with {flag})"),
+        None => String::new(),
+    }
+}
 
 /// An output image format, chosen by file extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -98,13 +175,74 @@ pub enum ImageError {
         /// The underlying error.
         source: io::Error,
     },
-    /// The file is not a supported image, is malformed, or exceeds the decoder's limits.
+    /// The file is not a supported image or is malformed.
     #[error("cannot read image '{}': {source}", shown(path))]
     Decode {
         /// The input path.
         path: PathBuf,
         /// The underlying error.
         source: image::ImageError,
+    },
+    /// The header gives more pixels than the limit allows; nothing was decoded.
+    #[error(
+        "cannot read image '{}': it is {width}×{height} = {} pixels, over the limit of {limit} \
+         pixels{}",
+        shown(path),
+        u64::from(*width) * u64::from(*height),
+        raise_hint(flag)
+    )]
+    TooLarge {
+        /// The input path.
+        path: PathBuf,
+        /// Width from the header.
+        width: u32,
+        /// Height from the header.
+        height: u32,
+        /// The pixel limit.
+        limit: u64,
+        /// The flag that raises the limit, if any.
+        flag: Option<&'static str>,
+    },
+    /// The decoder refused the image under the limits derived from the pixel limit.
+    #[error(
+        "cannot read image '{}': {source}; the limit is {limit} pixels{}",
+        shown(path),
+        raise_hint(flag)
+    )]
+    Limits {
+        /// The input path.
+        path: PathBuf,
+        /// The decoder's error.
+        source: image::ImageError,
+        /// The pixel limit.
+        limit: u64,
+        /// The flag that raises the limit, if any.
+        flag: Option<&'static str>,
+    },
+    /// The decoded image or its float pixels could not be allocated.
+    #[error(
+        "cannot read image '{}': not enough memory for its {width}×{height} pixels ({bytes} bytes)",
+        shown(path)
+    )]
+    OutOfMemory {
+        /// The input path.
+        path: PathBuf,
+        /// Image width.
+        width: u32,
+        /// Image height.
+        height: u32,
+        /// The allocation that failed, in bytes.
+        bytes: u64,
+    },
+    /// A JPEG file ends before its end-of-image marker.
+    #[error(
+        "cannot read image '{}': the JPEG data ends before its end-of-image marker \
+         (truncated file)",
+        shown(path)
+    )]
+    Truncated {
+        /// The input path.
+        path: PathBuf,
     },
 }
 
@@ -190,12 +328,33 @@ pub fn encode_image(
 /// 8-bit formats as value/255 (no gamma decoding: this renderer's default output is linear ×255),
 /// 16-bit as value/65535, EXR as its float values (alpha is dropped). The format is detected
 /// from the file's contents, falling back to its extension. Used to compare renders with references.
+///
+/// Images over [`DEFAULT_MAX_READ_PIXELS`] are refused; [`read_image_with`] takes other limits.
 pub fn read_image(path: &Path) -> Result<Film, ImageError> {
+    read_image_with(path, &ReadLimits::default())
+}
+
+/// [`read_image`] under `limits`: an image whose header gives more than `limits.max_pixels`
+/// pixels is refused before it is decoded ([`ImageError::TooLarge`]).
+pub fn read_image_with(path: &Path, limits: &ReadLimits) -> Result<Film, ImageError> {
     let open_err = |source: io::Error| ImageError::Open {
         path: path.to_path_buf(),
         source,
     };
+    let decode_err = |source: image::ImageError| match source {
+        image::ImageError::Limits(_) => ImageError::Limits {
+            path: path.to_path_buf(),
+            source,
+            limit: limits.max_pixels,
+            flag: limits.flag,
+        },
+        source => ImageError::Decode {
+            path: path.to_path_buf(),
+            source,
+        },
+    };
     let file = input::open(path).map_err(open_err)?;
+    input::checked_size(&file, limits.file_limit()).map_err(open_err)?;
     // The format from the contents, else from the extension (as `ImageReader::open` does).
     let mut reader = ImageReader::new(BufReader::new(file))
         .with_guessed_format()
@@ -205,18 +364,205 @@ pub fn read_image(path: &Path) -> Result<Film, ImageError> {
             reader.set_format(format);
         }
     }
-    let image = reader.decode().map_err(|source| ImageError::Decode {
+    if reader.format() == Some(image::ImageFormat::Jpeg) {
+        // The JPEG decoder pads missing data silently; check that the data is complete first.
+        let mut stream = reader.into_inner();
+        let complete = jpeg_is_complete(&mut stream).map_err(open_err)?;
+        if !complete {
+            return Err(ImageError::Truncated {
+                path: path.to_path_buf(),
+            });
+        }
+        stream.rewind().map_err(open_err)?;
+        reader = ImageReader::with_format(stream, image::ImageFormat::Jpeg);
+    }
+    reader.limits(limits.decoder_limits());
+    // Only the header is read here; the size is checked before any pixel is decoded.
+    let decoder = reader.into_decoder().map_err(decode_err)?;
+    let (width, height) = decoder.dimensions();
+    let pixels = u64::from(width) * u64::from(height);
+    if pixels > limits.max_pixels {
+        return Err(ImageError::TooLarge {
+            path: path.to_path_buf(),
+            width,
+            height,
+            limit: limits.max_pixels,
+            flag: limits.flag,
+        });
+    }
+    let out_of_memory = |bytes: u64| ImageError::OutOfMemory {
         path: path.to_path_buf(),
-        source,
+        width,
+        height,
+        bytes,
+    };
+    let color = decoder.color_type();
+    let total = decoder.total_bytes();
+    let mut raw = Vec::new();
+    usize::try_from(total)
+        .ok()
+        .and_then(|n| raw.try_reserve_exact(n).ok().map(|()| n))
+        .map(|n| raw.resize(n, 0u8))
+        .ok_or_else(|| out_of_memory(total))?;
+    decoder.read_image(&mut raw).map_err(decode_err)?;
+    let texels = to_rgb_f32(color, &raw, pixels as usize).map_err(|kind| match kind {
+        Conversion::OutOfMemory => out_of_memory(pixels.saturating_mul(12)),
+        Conversion::Unsupported => ImageError::Decode {
+            path: path.to_path_buf(),
+            source: image::ImageError::Unsupported(
+                image::error::UnsupportedError::from_format_and_kind(
+                    image::error::ImageFormatHint::Unknown,
+                    image::error::UnsupportedErrorKind::Color(color.into()),
+                ),
+            ),
+        },
     })?;
-    let rgb = image.to_rgb32f();
-    let (width, height) = rgb.dimensions();
-    let pixels = rgb
-        .as_raw()
-        .chunks_exact(3)
-        .map(|c| Vec3::new(c[0], c[1], c[2]))
-        .collect();
-    Ok(Film::from_pixels(width, height, pixels))
+    Ok(Film::from_pixels(width, height, texels))
+}
+
+/// Why decoded samples could not become float RGB.
+enum Conversion {
+    OutOfMemory,
+    Unsupported,
+}
+
+/// Decoded samples (native-endian, as [`ImageDecoder::read_image`] writes them) as float RGB,
+/// exactly as the `image` crate's `to_rgb32f` converts them: integers scaled to \[0, 1\], gray
+/// repeated in all three channels, alpha dropped. The output is reserved fallibly.
+fn to_rgb_f32(color: ColorType, raw: &[u8], pixels: usize) -> Result<Vec<Vec3>, Conversion> {
+    fn convert(
+        raw: &[u8],
+        pixels: usize,
+        channels: usize,
+        size: usize,
+        sample: impl Fn(&[u8]) -> f32,
+    ) -> Result<Vec<Vec3>, Conversion> {
+        let mut out = Vec::new();
+        out.try_reserve_exact(pixels)
+            .map_err(|_| Conversion::OutOfMemory)?;
+        let chunks = raw.chunks_exact(channels * size);
+        if channels < 3 {
+            out.extend(chunks.map(|px| Vec3::splat(sample(&px[..size]))));
+        } else {
+            out.extend(chunks.map(|px| {
+                let (r, rest) = px.split_at(size);
+                let (g, rest) = rest.split_at(size);
+                Vec3::new(sample(r), sample(g), sample(&rest[..size]))
+            }));
+        }
+        Ok(out)
+    }
+    // The `image` crate divides colour samples by the maximum but multiplies gray ones by its
+    // reciprocal (which can differ in the last bit); both are kept so that results are unchanged.
+    let u8_sample = |b: &[u8]| f32::from(b[0]) / 255.0;
+    let u16_sample = |b: &[u8]| f32::from(u16::from_ne_bytes([b[0], b[1]])) / 65535.0;
+    let u8_gray = |b: &[u8]| f32::from(b[0]) * (1.0 / 255.0);
+    let u16_gray = |b: &[u8]| f32::from(u16::from_ne_bytes([b[0], b[1]])) * (1.0 / 65535.0);
+    let f32_sample = |b: &[u8]| f32::from_ne_bytes([b[0], b[1], b[2], b[3]]);
+    match color {
+        ColorType::L8 => convert(raw, pixels, 1, 1, u8_gray),
+        ColorType::La8 => convert(raw, pixels, 2, 1, u8_gray),
+        ColorType::Rgb8 => convert(raw, pixels, 3, 1, u8_sample),
+        ColorType::Rgba8 => convert(raw, pixels, 4, 1, u8_sample),
+        ColorType::L16 => convert(raw, pixels, 1, 2, u16_gray),
+        ColorType::La16 => convert(raw, pixels, 2, 2, u16_gray),
+        ColorType::Rgb16 => convert(raw, pixels, 3, 2, u16_sample),
+        ColorType::Rgba16 => convert(raw, pixels, 4, 2, u16_sample),
+        ColorType::Rgb32F => convert(raw, pixels, 3, 4, f32_sample),
+        ColorType::Rgba32F => convert(raw, pixels, 4, 4, f32_sample),
+        _ => Err(Conversion::Unsupported),
+    }
+}
+
+/// Whether the JPEG stream reaches its end-of-image marker (FF D9), walking the marker segments
+/// (skipped by their lengths, so markers inside embedded thumbnails are not mistaken for it) and
+/// scanning entropy-coded data for the next marker. A stream that does not start with the
+/// start-of-image marker is left to the decoder to reject. Bytes after the end marker are allowed.
+fn jpeg_is_complete(r: &mut impl BufRead) -> io::Result<bool> {
+    let mut start = [0u8; 2];
+    if r.read_exact(&mut start).is_err() || start != [0xFF, 0xD8] {
+        return Ok(true);
+    }
+    // The marker found by the last entropy-data scan, if any.
+    let mut pending = None;
+    loop {
+        let marker = match pending.take() {
+            Some(m) => m,
+            None => match next_marker(r)? {
+                Some(m) => m,
+                None => return Ok(false),
+            },
+        };
+        match marker {
+            0xD9 => return Ok(true),
+            // Markers without a length.
+            0x01 | 0xD0..=0xD8 => {}
+            _ => {
+                let mut len = [0u8; 2];
+                if r.read_exact(&mut len).is_err() {
+                    return Ok(false);
+                }
+                let body = u64::from(u16::from_be_bytes(len)).saturating_sub(2);
+                if io::copy(&mut Read::take(&mut *r, body), &mut io::sink())? < body {
+                    return Ok(false);
+                }
+                if marker == 0xDA {
+                    // Start of scan: entropy-coded data follows, up to the next marker.
+                    match scan_entropy_data(r)? {
+                        Some(m) => pending = Some(m),
+                        None => return Ok(false),
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Reads up to the next marker (skipping stray bytes and fill bytes) and returns its code, or
+/// `None` at the end of the stream.
+fn next_marker(r: &mut impl BufRead) -> io::Result<Option<u8>> {
+    let mut seen_ff = false;
+    let mut byte = [0u8; 1];
+    loop {
+        if r.read(&mut byte)? == 0 {
+            return Ok(None);
+        }
+        match (seen_ff, byte[0]) {
+            (_, 0xFF) => seen_ff = true,
+            (true, 0x00) => seen_ff = false,
+            (true, m) => return Ok(Some(m)),
+            (false, _) => {}
+        }
+    }
+}
+
+/// Skips entropy-coded data (where FF 00 is a data byte and FF D0–D7 restart markers belong to
+/// the scan) and returns the marker that ends it, or `None` at the end of the stream.
+fn scan_entropy_data(r: &mut impl BufRead) -> io::Result<Option<u8>> {
+    let mut seen_ff = false;
+    loop {
+        let buf = r.fill_buf()?;
+        if buf.is_empty() {
+            return Ok(None);
+        }
+        let mut used = 0;
+        for &b in buf {
+            used += 1;
+            if seen_ff {
+                match b {
+                    0xFF => continue,
+                    0x00 | 0xD0..=0xD7 => seen_ff = false,
+                    m => {
+                        r.consume(used);
+                        return Ok(Some(m));
+                    }
+                }
+            } else if b == 0xFF {
+                seen_ff = true;
+            }
+        }
+        r.consume(used);
+    }
 }
 
 #[cfg(test)]
@@ -524,5 +870,189 @@ mod tests {
         assert_eq!((film.width, film.height), (2, 1));
         assert_eq!(film.get(0, 0), Vec3::new(1.0, 0.0, 0.2));
         assert_eq!(film.get(1, 0), Vec3::new(0.0, 128.0 / 255.0, 1.0));
+    }
+
+    /// A small JPEG (RGB, or gray when `gray`), as the `image` crate encodes it.
+    fn jpeg_bytes(width: u32, height: u32, gray: bool) -> Vec<u8> {
+        let mut out = Vec::new();
+        let encoder = image::codecs::jpeg::JpegEncoder::new_with_quality(&mut out, 90);
+        let (channels, color) = if gray {
+            (1, ExtendedColorType::L8)
+        } else {
+            (3, ExtendedColorType::Rgb8)
+        };
+        let data: Vec<u8> = (0..width * height * channels)
+            .map(|i| (i * 37 % 251) as u8)
+            .collect();
+        encoder.write_image(&data, width, height, color).unwrap();
+        out
+    }
+
+    /// Rewrites the size in a JPEG's baseline start-of-frame header.
+    fn patch_jpeg_size(bytes: &mut [u8], width: u16, height: u16) {
+        let sof = bytes
+            .windows(2)
+            .position(|w| w == [0xFF, 0xC0])
+            .expect("baseline JPEG");
+        bytes[sof + 5..sof + 7].copy_from_slice(&height.to_be_bytes());
+        bytes[sof + 7..sof + 9].copy_from_slice(&width.to_be_bytes());
+    }
+
+    #[test]
+    fn conversion_matches_to_rgb32f_for_every_color_type() {
+        use image::DynamicImage;
+        let (w, h) = (5u32, 3u32);
+        let mut seed = 7u32;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            seed >> 8
+        };
+        let u8s = |n: u32, next: &mut dyn FnMut() -> u32| -> Vec<u8> {
+            (0..n).map(|_| next() as u8).collect()
+        };
+        let u16s = |n: u32, next: &mut dyn FnMut() -> u32| -> Vec<u16> {
+            (0..n).map(|_| next() as u16).collect()
+        };
+        let f32s = |n: u32, next: &mut dyn FnMut() -> u32| -> Vec<f32> {
+            (0..n).map(|_| next() as f32 / 1000.0 - 3.0).collect()
+        };
+        let n = w * h;
+        let images = vec![
+            DynamicImage::ImageLuma8(
+                image::ImageBuffer::from_raw(w, h, u8s(n, &mut next)).unwrap(),
+            ),
+            DynamicImage::ImageLumaA8(
+                image::ImageBuffer::from_raw(w, h, u8s(2 * n, &mut next)).unwrap(),
+            ),
+            DynamicImage::ImageRgb8(
+                image::ImageBuffer::from_raw(w, h, u8s(3 * n, &mut next)).unwrap(),
+            ),
+            DynamicImage::ImageRgba8(
+                image::ImageBuffer::from_raw(w, h, u8s(4 * n, &mut next)).unwrap(),
+            ),
+            DynamicImage::ImageLuma16(
+                image::ImageBuffer::from_raw(w, h, u16s(n, &mut next)).unwrap(),
+            ),
+            DynamicImage::ImageLumaA16(
+                image::ImageBuffer::from_raw(w, h, u16s(2 * n, &mut next)).unwrap(),
+            ),
+            DynamicImage::ImageRgb16(
+                image::ImageBuffer::from_raw(w, h, u16s(3 * n, &mut next)).unwrap(),
+            ),
+            DynamicImage::ImageRgba16(
+                image::ImageBuffer::from_raw(w, h, u16s(4 * n, &mut next)).unwrap(),
+            ),
+            DynamicImage::ImageRgb32F(
+                image::ImageBuffer::from_raw(w, h, f32s(3 * n, &mut next)).unwrap(),
+            ),
+            DynamicImage::ImageRgba32F(
+                image::ImageBuffer::from_raw(w, h, f32s(4 * n, &mut next)).unwrap(),
+            ),
+        ];
+        for img in images {
+            let expected: Vec<f32> = img.to_rgb32f().into_raw();
+            let Ok(got) = to_rgb_f32(img.color(), img.as_bytes(), n as usize) else {
+                panic!("{:?} not converted", img.color());
+            };
+            let got: Vec<f32> = got.iter().flat_map(|p| p.to_array()).collect();
+            assert_eq!(got, expected, "{:?}", img.color());
+        }
+    }
+
+    #[test]
+    fn image_over_the_pixel_limit_is_refused_from_its_header() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("wide.png");
+        let film = Film::from_pixels(4, 3, vec![Vec3::splat(0.5); 12]);
+        write_image(&path, &film, ToneMap::Linear, 1.0).unwrap();
+        let limits = |max_pixels| ReadLimits {
+            max_pixels,
+            flag: Some("--max-test-pixels"),
+        };
+        assert_eq!(
+            read_image_with(&path, &limits(12)).unwrap(),
+            read_image(&path).unwrap()
+        );
+        let err = read_image_with(&path, &limits(11)).unwrap_err();
+        assert!(matches!(err, ImageError::TooLarge { .. }), "{err:?}");
+        let msg = err.to_string();
+        for part in [
+            "wide.png",
+            "4×3 = 12 pixels",
+            "limit of 11 pixels",
+            "--max-test-pixels",
+        ] {
+            assert!(msg.contains(part), "{msg} lacks {part}");
+        }
+        // A side longer than the limit is caught by the decoder's own limits; the message still
+        // gives the limit.
+        let err = read_image_with(&path, &limits(3)).unwrap_err();
+        let msg = err.to_string();
+        assert!(
+            msg.contains("wide.png")
+                && msg.contains("3 pixels")
+                && msg.contains("--max-test-pixels"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn jpeg_bomb_is_refused_before_decoding() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut bytes = jpeg_bytes(16, 16, true);
+        patch_jpeg_size(&mut bytes, 23_000, 23_000);
+        let path = dir.path().join("bomb.jpg");
+        fs::write(&path, &bytes).unwrap();
+        let err = read_image(&path).unwrap_err();
+        assert!(
+            matches!(err, ImageError::TooLarge { width: 23_000, .. }),
+            "{err:?}"
+        );
+        assert!(err.to_string().contains("bomb.jpg"), "{err}");
+    }
+
+    #[test]
+    fn truncated_jpeg_is_an_error() {
+        let dir = tempfile::tempdir().unwrap();
+        let bytes = jpeg_bytes(32, 24, false);
+        let path = dir.path().join("full.jpg");
+        fs::write(&path, &bytes).unwrap();
+        let full = read_image(&path).unwrap();
+        assert_eq!((full.width, full.height), (32, 24));
+        // Bytes after the end-of-image marker are allowed.
+        let mut trailing = bytes.clone();
+        trailing.extend_from_slice(b"trailing bytes \xFF\xD8");
+        fs::write(&path, &trailing).unwrap();
+        assert_eq!(read_image(&path).unwrap(), full);
+        for cut in [2, 3, 30, bytes.len() / 2, bytes.len() - 2, bytes.len() - 1] {
+            let short = dir.path().join(format!("cut{cut}.jpg"));
+            fs::write(&short, &bytes[..cut]).unwrap();
+            let err = read_image(&short).unwrap_err();
+            assert!(err.to_string().contains(&format!("cut{cut}.jpg")), "{err}");
+            if cut > 2 && cut < bytes.len() {
+                assert!(
+                    matches!(err, ImageError::Truncated { .. }),
+                    "{cut}: {err:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn jpeg_marker_walk_skips_segments_and_stuffed_bytes() {
+        // SOI, an APP1 segment holding a complete embedded JPEG (its FF D9 must not count), SOS
+        // with entropy data containing stuffed FF 00 and a restart marker, then EOI.
+        let mut stream = vec![
+            0xFF, 0xD8, 0xFF, 0xE1, 0x00, 0x08, 0xFF, 0xD8, 0xFF, 0xD9, 0x00, 0x00,
+        ];
+        stream.extend_from_slice(&[0xFF, 0xDA, 0x00, 0x04, 0x01, 0x02]);
+        stream.extend_from_slice(&[0x12, 0xFF, 0x00, 0x34, 0xFF, 0xD0, 0x56, 0xFF, 0xFF]);
+        let complete = |bytes: &[u8]| jpeg_is_complete(&mut io::Cursor::new(bytes)).unwrap();
+        assert!(!complete(&stream));
+        assert!(!complete(&stream[..10]));
+        stream.push(0xD9);
+        assert!(complete(&stream));
+        // Not a JPEG at all: left to the decoder.
+        assert!(complete(b"P6 1 1 255 abc"));
     }
 }

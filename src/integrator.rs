@@ -15,6 +15,13 @@
 //! internal reflection). Reflection and refraction are traced only while the depth is below
 //! `nbounces`.
 //!
+//! The ray tree is walked with an explicit stack of open shading points rather than by recursion,
+//! so `nbounces` is not limited by the thread's stack: the walk is the recursion's, depth first
+//! with the refracted ray's subtree before the reflected ray, every shading point's radiance
+//! complete before it is scaled into its parent's, so the sums are the same to the bit. The
+//! stack never holds more than [`MAX_SECONDARY_RAYS_PER_SAMPLE`] + 1 shading points, as each one
+//! past the camera ray's costs a secondary ray of the sample's budget.
+//!
 //! Work a shading point does not need:
 //! - a shadow ray towards a light sample behind the side of the surface we see (`l · n ≤ 0`) is
 //!   never traced: that sample contributes nothing, whatever the visibility. Always on; it changes
@@ -31,12 +38,19 @@
 //!   is not traced, as POV-Ray's `adc_bailout` does; at 1/255 a branch then cannot change an 8-bit
 //!   pixel unless its radiance is above 1.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use crate::accel::Accel;
 use crate::light::Light;
 use crate::math::{fresnel_dielectric, reflect, refract, Vec2, Vec3};
 use crate::ray::{Hit, Ray};
 use crate::sampling::{Method, SampleKey};
 use crate::scene::{RenderMode, Scene};
+
+/// Shadow rays towards one area light between two looks at [`Tracer::cancel`]: one look is one
+/// relaxed load, small beside this many rays, and the longest stretch without one (an area light
+/// of the largest allowed sample count) stays a small fraction of the ray count.
+const SHADOW_RAYS_PER_CANCEL_CHECK: u32 = 256;
 
 /// Colour of a hit in `rendermode: binary` (misses are black), as in the CGR specification.
 pub const BINARY_HIT: Vec3 = Vec3::new(1.0, 0.0, 0.0);
@@ -139,6 +153,36 @@ impl RayCounts {
     }
 }
 
+/// A reflection or refraction ray not yet traced, and the factor its radiance is scaled by in
+/// its parent's.
+#[derive(Debug, Clone, Copy)]
+struct Branch {
+    ray: Ray,
+    /// Depth of the shading point it leads to.
+    depth: u32,
+    key: SampleKey,
+    /// Accumulated weight of the ray, for the cut-off.
+    weight: f32,
+    factor: f32,
+}
+
+/// A shading point whose reflection and refraction rays are not all traced yet.
+#[derive(Debug, Clone, Copy)]
+struct Open {
+    /// Direct light plus the scaled radiance of the branches finished so far.
+    color: Vec3,
+    /// Factor of this point's radiance in its parent's.
+    factor: f32,
+    /// Refracted then reflected ray, in the order they are traced; taken when started.
+    branches: [Option<Branch>; 2],
+}
+
+impl Open {
+    fn next_branch(&mut self) -> Option<Branch> {
+        self.branches.iter_mut().find_map(Option::take)
+    }
+}
+
 /// Traces rays through one scene. Cheap to create; one per worker.
 pub struct Tracer<'a> {
     pub scene: &'a Scene,
@@ -147,8 +191,13 @@ pub struct Tracer<'a> {
     pub max_depth: u32,
     pub options: TraceOptions,
     pub counts: RayCounts,
+    /// When set (from any thread), tracing stops at the next shading point or batch of shadow
+    /// rays and the radiance returned is meaningless; the caller must throw the sample away.
+    pub cancel: Option<&'a AtomicBool>,
     /// Secondary rays left for the current camera sample.
     budget: u32,
+    /// The open shading points of the current camera sample, kept to reuse its memory.
+    open: Vec<Open>,
 }
 
 impl<'a> Tracer<'a> {
@@ -159,21 +208,98 @@ impl<'a> Tracer<'a> {
             max_depth,
             options: TraceOptions::default(),
             counts: RayCounts::default(),
+            cancel: None,
             budget: MAX_SECONDARY_RAYS_PER_SAMPLE,
+            open: Vec::new(),
         }
+    }
+
+    /// Whether [`Tracer::cancel`] is set.
+    #[inline]
+    pub fn cancelled(&self) -> bool {
+        self.cancel.is_some_and(|c| c.load(Ordering::Relaxed))
     }
 
     /// Radiance along a camera ray.
     pub fn trace_camera(&mut self, ray: &Ray, key: &SampleKey) -> Vec3 {
         self.counts.camera += 1;
         self.budget = MAX_SECONDARY_RAYS_PER_SAMPLE;
-        let c = self.radiance(ray, 0, key, 1.0);
+        let c = self.radiance(ray, key);
         finite_radiance(c)
     }
 
-    /// Radiance along `ray` at recursion `depth`; `weight` is the share of the camera sample's
-    /// value it carries (for the cut-off).
-    fn radiance(&mut self, ray: &Ray, depth: u32, key: &SampleKey, weight: f32) -> Vec3 {
+    /// Radiance along a camera ray: the ray tree walked depth first, each shading point's
+    /// radiance added, scaled, to its parent's once all its branches are done.
+    fn radiance(&mut self, ray: &Ray, key: &SampleKey) -> Vec3 {
+        let mut branches = [None, None];
+        let color = self.shade(ray, 0, key, 1.0, &mut branches);
+        if branches.iter().all(Option::is_none) {
+            return color;
+        }
+        let mut open = std::mem::take(&mut self.open);
+        open.clear();
+        open.push(Open {
+            color,
+            factor: 1.0,
+            branches,
+        });
+        let result = loop {
+            let Some(top) = open.last_mut() else {
+                break Vec3::ZERO; // not reached: the camera ray's point is popped last
+            };
+            let Some(branch) = top.next_branch() else {
+                let done = *top;
+                open.pop();
+                match open.last_mut() {
+                    Some(parent) => parent.color += done.factor * done.color,
+                    None => break done.color,
+                }
+                continue;
+            };
+            if self.budget == 0 {
+                top.color += branch.factor * Vec3::ZERO;
+                continue;
+            }
+            if self.cancelled() {
+                break Vec3::ZERO;
+            }
+            self.budget -= 1;
+            self.counts.secondary += 1;
+            let mut branches = [None, None];
+            let color = self.shade(
+                &branch.ray,
+                branch.depth,
+                &branch.key,
+                branch.weight,
+                &mut branches,
+            );
+            if branches.iter().all(Option::is_none) {
+                top.color += branch.factor * color;
+            } else {
+                open.push(Open {
+                    color,
+                    factor: branch.factor,
+                    branches,
+                });
+            }
+        };
+        self.open = open;
+        result
+    }
+
+    /// The direct light at the point `ray` hits at `depth` and the reflection and refraction rays
+    /// it spawns; `weight` is the share of the camera sample's value the ray carries (for the
+    /// cut-off).
+    /// The rays are written to `branches` (refracted first, then reflected), which the caller
+    /// passes empty; the point is finished when both stay empty.
+    fn shade(
+        &mut self,
+        ray: &Ray,
+        depth: u32,
+        key: &SampleKey,
+        weight: f32,
+        branches: &mut [Option<Branch>; 2],
+    ) -> Vec3 {
         let scene = self.scene;
         let Some((prim, cand)) = self.accel.closest(&scene.primitives, ray, f32::INFINITY) else {
             return match scene.mode {
@@ -216,6 +342,9 @@ impl<'a> Tracer<'a> {
                 continue; // every probe is blocked: the light is taken as fully hidden
             }
             for s in 0..count {
+                if s % SHADOW_RAYS_PER_CANCEL_CHECK == 0 && self.cancelled() {
+                    return color;
+                }
                 let u = if count == 1 {
                     Vec2::splat(0.5)
                 } else {
@@ -249,6 +378,13 @@ impl<'a> Tracer<'a> {
         if depth >= scene.nbounces.min(self.max_depth) {
             return color;
         }
+        let branch = |dir: Vec3, id: u64, factor: f32| Branch {
+            ray: hit.spawn(dir),
+            depth: depth + 1,
+            key: key.stream(0x1000 + id),
+            weight: weight * factor,
+            factor,
+        };
         let mut reflect_weight = material.kr;
         if material.kt > 0.0 {
             let eta = if front {
@@ -262,14 +398,13 @@ impl<'a> Tracer<'a> {
             let transmit = material.kt * (1.0 - f);
             if transmit > 0.0 && self.worth_tracing(weight * transmit) {
                 if let Some(t) = refract(ray.dir, n, eta) {
-                    color += transmit * self.secondary(&hit, t, depth, key, 2, weight * transmit);
+                    branches[0] = Some(branch(t, 2, transmit));
                 }
             }
         }
         if reflect_weight > 0.0 && self.worth_tracing(weight * reflect_weight) {
             let r = reflect(ray.dir, n).normalize();
-            color +=
-                reflect_weight * self.secondary(&hit, r, depth, key, 1, weight * reflect_weight);
+            branches[1] = Some(branch(r, 1, reflect_weight));
         }
         color
     }
@@ -297,24 +432,6 @@ impl<'a> Tracer<'a> {
             }
         }
         seen
-    }
-
-    fn secondary(
-        &mut self,
-        hit: &Hit,
-        dir: Vec3,
-        depth: u32,
-        key: &SampleKey,
-        branch: u64,
-        weight: f32,
-    ) -> Vec3 {
-        if self.budget == 0 {
-            return Vec3::ZERO;
-        }
-        self.budget -= 1;
-        self.counts.secondary += 1;
-        let ray = hit.spawn(dir);
-        self.radiance(&ray, depth + 1, &key.stream(0x1000 + branch), weight)
     }
 
     /// Fraction of light reaching `hit` from `target`: 0 behind an opaque surface, multiplied by

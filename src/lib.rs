@@ -6,6 +6,7 @@
 pub mod accel;
 pub mod bench;
 pub mod camera;
+pub mod cli;
 pub mod files;
 pub mod film;
 pub mod geometry;

@@ -152,6 +152,7 @@ impl SampleKey {
     /// Sample `index` of `count` samples placed with `method` in the unit square, for a set of
     /// samples taken at one shading point (e.g. the shadow rays towards one area light). `dimension`
     /// separates different sets at the same point.
+    #[inline]
     pub fn set_point(&self, method: Method, dimension: u64, index: u32, count: u32) -> Vec2 {
         let h = hash(&[self.key, dimension, index as u64]);
         let u = Vec2::new(to_unit(h), to_unit(mix64(h)));

@@ -18,7 +18,7 @@ use image::ImageEncoder;
 use crate::film::Film;
 use crate::integrator::TraceOptions;
 use crate::metric::{mean_flip, mse, Region};
-use crate::render::{render, RenderOptions, RenderOutput};
+use crate::render::{render, RenderError, RenderOptions, RenderOutput};
 use crate::sampling::Method;
 use crate::scene::Scene;
 
@@ -81,7 +81,12 @@ pub fn sample_counts(method: Method, max: u32) -> Vec<u32> {
 
 /// Renders `scene` with one ray per pixel centre and every area light sampled with `method` at
 /// `samples` shadow rays (point lights are unchanged).
-pub fn render_with(scene: &Scene, method: Method, samples: u32, seed: u64) -> RenderOutput {
+pub fn render_with(
+    scene: &Scene,
+    method: Method,
+    samples: u32,
+    seed: u64,
+) -> Result<RenderOutput, RenderError> {
     render(
         scene,
         &RenderOptions {
@@ -100,9 +105,9 @@ pub fn render_with(scene: &Scene, method: Method, samples: u32, seed: u64) -> Re
 
 /// The reference: jittered shadow rays on a `k×k` grid with `k² ≥ samples`, under a seed no run
 /// of a study uses.
-pub fn reference(scene: &Scene, samples: u32) -> Film {
+pub fn reference(scene: &Scene, samples: u32) -> Result<Film, RenderError> {
     let k = (samples.max(1) as f64).sqrt().ceil() as u32;
-    render_with(scene, Method::Jittered, k * k, 0x5eed_f4ef).film
+    Ok(render_with(scene, Method::Jittered, k * k, 0x5eed_f4ef)?.film)
 }
 
 /// The median of `v` (the mean of the middle two for an even length); 0 for none.
@@ -125,7 +130,7 @@ pub fn run_study(
     reference: &Film,
     options: &StudyOptions,
     mut progress: impl FnMut(usize, usize, &Run),
-) -> Vec<Run> {
+) -> Result<Vec<Run>, RenderError> {
     let plan: Vec<(Method, u32)> = options
         .samplers
         .iter()
@@ -142,7 +147,7 @@ pub fn run_study(
         let mut times = Vec::with_capacity(options.runs.max(1));
         let mut film = None;
         for _ in 0..options.runs.max(1) {
-            let r = render_with(scene, sampler, samples, options.seed);
+            let r = render_with(scene, sampler, samples, options.seed)?;
             times.push(r.render_time.as_secs_f64());
             film = Some(r.film);
         }
@@ -158,7 +163,7 @@ pub fn run_study(
         progress(i + 1, plan.len(), &run);
         out.push(run);
     }
-    out
+    Ok(out)
 }
 
 /// The runs of one sampler, in sample order.
@@ -435,7 +440,12 @@ pub struct SkipRun {
 /// Renders `scene` with `base` plain, with adaptive area lights, with the POV-Ray cut-off at
 /// `cutoff`, and with both; returns each one's median time over `runs` and its error against
 /// the plain render.
-pub fn skip_work(scene: &Scene, base: &RenderOptions, cutoff: f32, runs: usize) -> Vec<SkipRun> {
+pub fn skip_work(
+    scene: &Scene,
+    base: &RenderOptions,
+    cutoff: f32,
+    runs: usize,
+) -> Result<Vec<SkipRun>, RenderError> {
     let variants: [(&'static str, bool, Option<f32>); 4] = [
         ("plain", false, None),
         ("adaptive-lights", true, None),
@@ -456,7 +466,7 @@ pub fn skip_work(scene: &Scene, base: &RenderOptions, cutoff: f32, runs: usize) 
         let mut times = Vec::new();
         let mut last = None;
         for _ in 0..runs.max(1) {
-            let r = render(scene, &options);
+            let r = render(scene, &options)?;
             times.push(r.render_time.as_secs_f64());
             last = Some(r);
         }
@@ -471,7 +481,7 @@ pub fn skip_work(scene: &Scene, base: &RenderOptions, cutoff: f32, runs: usize) 
             mse: mse(reference, &r.film, full),
         });
     }
-    out
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -13,7 +13,8 @@ use std::path::Path;
 
 use glam::{Vec2, Vec3};
 
-use crate::image_io::{read_image, ImageError};
+use crate::image_io::{read_image_with, ImageError, ReadLimits};
+use crate::scene::load::DEFAULT_MAX_TEXTURE_PIXELS;
 
 /// An RGB image texture.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,9 +29,22 @@ pub struct Texture {
 }
 
 impl Texture {
-    /// Loads a PNG, JPEG or PPM image (anything [`read_image`] reads) as a texture.
+    /// Loads a PNG, JPEG or PPM image (anything [`crate::image_io::read_image`] reads) as a
+    /// texture of at most [`DEFAULT_MAX_TEXTURE_PIXELS`] texels.
     pub fn load(path: &Path) -> Result<Texture, ImageError> {
-        let film = read_image(path)?;
+        Texture::load_with(
+            path,
+            &ReadLimits {
+                max_pixels: DEFAULT_MAX_TEXTURE_PIXELS,
+                flag: None,
+            },
+        )
+    }
+
+    /// [`Texture::load`] under `limits`: an image whose header gives more texels than
+    /// `limits.max_pixels` is refused before it is decoded.
+    pub fn load_with(path: &Path, limits: &ReadLimits) -> Result<Texture, ImageError> {
+        let film = read_image_with(path, limits)?;
         Ok(Texture {
             width: film.width,
             height: film.height,

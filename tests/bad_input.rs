@@ -282,3 +282,383 @@ fn every_broken_input_fails_cleanly_and_touches_nothing() {
         );
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Generated cases: assets too large to keep in the repository, or that cannot be files in it
+// (FIFOs, devices). Each is written into a temporary folder next to its scene.
+// ---------------------------------------------------------------------------------------------
+
+/// A scene with one textured sphere whose `tPath` is `texture`.
+fn texture_scene(texture: &str) -> String {
+    format!(
+        r#"{{ "camera": {{ "type": "pinhole", "width": 8, "height": 6, "fov": 40,
+              "position": [0, -4, 1], "lookat": [0, 1, 0], "up": [0, 0, 1] }},
+             "scene": {{ "backgroundcolor": [0, 0, 0], "lightsources": [],
+               "shapes": [{{ "type": "sphere", "center": [0, 0, 0], "radius": 1,
+                 "material": {{ "kd": 0.8, "diffusecolor": [1, 1, 1], "tPath": "{texture}" }} }}] }} }}"#
+    )
+}
+
+/// A scene with one mesh read from `mesh`.
+fn mesh_scene(mesh: &str) -> String {
+    format!(
+        r#"{{ "camera": {{ "type": "pinhole", "width": 8, "height": 6, "fov": 40,
+              "position": [0, -4, 1], "lookat": [0, 1, 0], "up": [0, 0, 1] }},
+             "scene": {{ "backgroundcolor": [0, 0, 0], "lightsources": [],
+               "shapes": [{{ "type": "mesh", "mPath": "{mesh}",
+                 "material": {{ "kd": 0.8, "diffusecolor": [1, 1, 1] }} }}] }} }}"#
+    )
+}
+
+/// Runs `raytracer <args…> <dir>/render.png` over an earlier render and returns its stderr after
+/// checking that it exited with status 1 without a panic and left the earlier render alone.
+fn fails_cleanly(dir: &std::path::Path, args: &[&std::ffi::OsStr]) -> String {
+    let out = dir.join("render.png");
+    std::fs::write(&out, b"an earlier render").unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+        .args(args)
+        .arg(&out)
+        .output()
+        .unwrap();
+    let msg = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(1), "{args:?}: {msg}");
+    assert!(!msg.contains("panicked"), "{args:?}: {msg}");
+    assert_eq!(std::fs::read(&out).unwrap(), b"an earlier render");
+    msg
+}
+
+/// Writes `json` as `scene.json` in `dir`, renders it with `flags` and returns the message of
+/// the clean failure, checked to contain every one of `needles`.
+fn scene_fails(dir: &std::path::Path, json: &str, flags: &[&str], needles: &[&str]) -> String {
+    let scene = dir.join("scene.json");
+    std::fs::write(&scene, json).unwrap();
+    let mut args: Vec<&std::ffi::OsStr> = vec![scene.as_os_str()];
+    args.extend(flags.iter().map(std::ffi::OsStr::new));
+    let msg = fails_cleanly(dir, &args);
+    for n in needles {
+        assert!(msg.contains(n), "the message lacks '{n}': {msg}");
+    }
+    msg
+}
+
+/// CRC-32 as PNG chunks use it.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in bytes {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+/// Deflate bits, least significant first.
+#[derive(Default)]
+struct Bits {
+    bytes: Vec<u8>,
+    used: u32,
+}
+
+impl Bits {
+    fn put(&mut self, value: u32, count: u32) {
+        for i in 0..count {
+            if self.used.is_multiple_of(8) {
+                self.bytes.push(0);
+            }
+            if value >> i & 1 != 0 {
+                *self.bytes.last_mut().unwrap() |= 1 << (self.used % 8);
+            }
+            self.used += 1;
+        }
+    }
+
+    /// A Huffman code, which deflate stores most significant bit first.
+    fn code(&mut self, code: u32, count: u32) {
+        self.put(code.reverse_bits() >> (32 - count), count);
+    }
+}
+
+/// A zlib stream of `n` zero bytes: one fixed-Huffman block of a literal zero and copies of 258
+/// bytes at distance 1 (13 bits each), so about 2500 times smaller than the data.
+fn zlib_zeros(n: u64) -> Vec<u8> {
+    let mut bits = Bits::default();
+    bits.put(1, 1); // final block
+    bits.put(1, 2); // fixed Huffman codes
+    let literal_zero = |bits: &mut Bits| bits.code(0x30, 8);
+    literal_zero(&mut bits);
+    for _ in 0..(n - 1) / 258 {
+        bits.code(0xC5, 8); // length 258 (code 285)
+        bits.code(0, 5); // distance 1
+    }
+    for _ in 0..(n - 1) % 258 {
+        literal_zero(&mut bits);
+    }
+    bits.code(0, 7); // end of block
+    let mut out = vec![0x78, 0x01];
+    out.extend(bits.bytes);
+    // Adler-32 of zeros: a stays 1, b grows by 1 a byte.
+    let adler = ((n % 65521) as u32) << 16 | 1;
+    out.extend(adler.to_be_bytes());
+    out
+}
+
+/// A black 1-bit grayscale PNG of `width × height`, compressed to a few hundred bytes per
+/// megapixel.
+fn black_png(width: u32, height: u32) -> Vec<u8> {
+    let chunk = |out: &mut Vec<u8>, kind: &[u8], data: &[u8]| {
+        out.extend((data.len() as u32).to_be_bytes());
+        let start = out.len();
+        out.extend(kind);
+        out.extend(data);
+        let crc = crc32(&out[start..]);
+        out.extend(crc.to_be_bytes());
+    };
+    let mut ihdr = Vec::new();
+    ihdr.extend(width.to_be_bytes());
+    ihdr.extend(height.to_be_bytes());
+    ihdr.extend([1, 0, 0, 0, 0]); // 1 bit, gray, deflate, adaptive filters, no interlace
+                                  // Each row: a filter byte (0 = none) and the packed bits.
+    let row = 1 + u64::from(width).div_ceil(8);
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    chunk(&mut png, b"IHDR", &ihdr);
+    chunk(&mut png, b"IDAT", &zlib_zeros(row * u64::from(height)));
+    chunk(&mut png, b"IEND", &[]);
+    png
+}
+
+/// A small JPEG, gray or RGB, as the `image` crate encodes it.
+fn small_jpeg(width: u32, height: u32, gray: bool) -> Vec<u8> {
+    use image::ImageEncoder;
+    let (channels, color) = if gray {
+        (1, image::ExtendedColorType::L8)
+    } else {
+        (3, image::ExtendedColorType::Rgb8)
+    };
+    let data: Vec<u8> = (0..width * height * channels)
+        .map(|i| (i * 7 % 256) as u8)
+        .collect();
+    let mut out = Vec::new();
+    image::codecs::jpeg::JpegEncoder::new_with_quality(&mut out, 90)
+        .write_image(&data, width, height, color)
+        .unwrap();
+    out
+}
+
+#[test]
+fn the_bomb_generator_writes_a_real_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("black.png");
+    std::fs::write(&path, black_png(1000, 300)).unwrap();
+    let film = raytracer::image_io::read_image(&path).unwrap();
+    assert_eq!((film.width, film.height), (1000, 300));
+    assert!(film
+        .pixels
+        .iter()
+        .all(|p| *p == raytracer::math::Vec3::ZERO));
+}
+
+#[test]
+fn decompression_bombs_fail_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // 23000 × 23000 pixels: 66 MB as 1-bit rows, 6.3 GB as float RGB; about 420 KB on disk.
+    let png = black_png(23_000, 23_000);
+    assert!(png.len() < 1 << 20, "{} bytes", png.len());
+    std::fs::write(d.join("bomb.png"), &png).unwrap();
+    let needles = [
+        "bomb.png",
+        "scene.shapes[0].material.tPath",
+        "23000×23000",
+        "limit of 67108864 pixels",
+        "--max-texture-pixels",
+    ];
+    scene_fails(d, &texture_scene("bomb.png"), &[], &needles);
+
+    // A gray JPEG of 16 × 16 pixels whose header claims 23000 × 23000.
+    let mut jpeg = small_jpeg(16, 16, true);
+    let sof = jpeg.windows(2).position(|w| w == [0xFF, 0xC0]).unwrap();
+    jpeg[sof + 5..sof + 9].copy_from_slice(&[0x59, 0xD8, 0x59, 0xD8]);
+    std::fs::write(d.join("bomb.jpg"), &jpeg).unwrap();
+    let needles = [
+        "bomb.jpg",
+        "scene.shapes[0].material.tPath",
+        "23000×23000",
+        "limit of 67108864 pixels",
+        "--max-texture-pixels",
+    ];
+    scene_fails(d, &texture_scene("bomb.jpg"), &[], &needles);
+
+    // The flag sets the limit.
+    std::fs::write(d.join("wide.jpg"), small_jpeg(40, 30, false)).unwrap();
+    let needles = ["wide.jpg", "40×30 = 1200 pixels", "limit of 1000 pixels"];
+    scene_fails(
+        d,
+        &texture_scene("wide.jpg"),
+        &["--max-texture-pixels", "1000"],
+        &needles,
+    );
+
+    // Comparing against a bomb fails cleanly too.
+    std::fs::write(d.join("small.png"), black_png(4, 4)).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+        .arg("compare")
+        .arg(d.join("bomb.png"))
+        .arg(d.join("small.png"))
+        .output()
+        .unwrap();
+    let msg = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{msg}");
+    assert!(!msg.contains("panicked"), "{msg}");
+    assert!(
+        msg.contains("bomb.png") && msg.contains("limit of 134217728 pixels"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn truncated_jpeg_texture_fails_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let jpeg = small_jpeg(64, 48, false);
+    std::fs::write(dir.path().join("truncated.jpg"), &jpeg[..jpeg.len() / 2]).unwrap();
+    let needles = [
+        "truncated.jpg",
+        "scene.shapes[0].material.tPath",
+        "end-of-image marker",
+    ];
+    scene_fails(dir.path(), &texture_scene("truncated.jpg"), &[], &needles);
+}
+
+#[test]
+fn mesh_blow_ups_fail_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // One polygon of 1.5 million corners (3 MB): a fan of about 1.5 million triangles.
+    let mut obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf".to_vec();
+    for _ in 0..500_000 {
+        obj.extend_from_slice(b" 1 2 3");
+    }
+    obj.push(b'\n');
+    std::fs::write(d.join("fan.obj"), &obj).unwrap();
+    let needles = [
+        "fan.obj (line 4)",
+        "scene.shapes[0].mPath",
+        "1499998 triangles",
+        "limit of 1000000 triangles",
+        "--max-triangles",
+    ];
+    scene_fails(
+        d,
+        &mesh_scene("fan.obj"),
+        &["--max-triangles", "1000000"],
+        &needles,
+    );
+
+    // A PLY header that claims far more faces than the file holds.
+    let header = |faces: u64| {
+        format!(
+            "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n\
+             property float y\nproperty float z\nelement face {faces}\n\
+             property list uchar int vertex_indices\nend_header\n"
+        )
+        .into_bytes()
+    };
+    let mut ply = header(3_000_000_000);
+    ply.extend([0u8; 36 + 13]);
+    std::fs::write(d.join("huge.ply"), &ply).unwrap();
+    let needles = [
+        "huge.ply",
+        "scene.shapes[0].mPath",
+        "3000000000 'face' elements",
+        "truncated or corrupt",
+    ];
+    scene_fails(d, &mesh_scene("huge.ply"), &[], &needles);
+
+    // A PLY whose face count fits the file but not the triangle limit.
+    let mut ply = header(2000);
+    ply.extend([0u8; 36]);
+    // Each face: three corners, vertices 0, 1 and 2.
+    let face: Vec<u8> = std::iter::once(3u8)
+        .chain((0i32..3).flat_map(i32::to_le_bytes))
+        .collect();
+    for _ in 0..2000 {
+        ply.extend(&face);
+    }
+    std::fs::write(d.join("many.ply"), &ply).unwrap();
+    let needles = [
+        "many.ply",
+        "declares 2000 faces",
+        "limit of 1000 triangles",
+        "--max-triangles",
+    ];
+    scene_fails(
+        d,
+        &mesh_scene("many.ply"),
+        &["--max-triangles", "1000"],
+        &needles,
+    );
+
+    // A mesh over the file size limit.
+    let needles = [
+        "many.ply",
+        "over the limit of 1000 bytes",
+        "--max-mesh-bytes",
+    ];
+    scene_fails(
+        d,
+        &mesh_scene("many.ply"),
+        &["--max-mesh-bytes", "1000"],
+        &needles,
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn fifos_and_devices_as_assets_fail_cleanly_without_blocking() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let status = Command::new("mkfifo")
+        .arg(d.join("pipe.ply"))
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let needles = ["pipe.ply", "scene.shapes[0].mPath", "FIFO"];
+    scene_fails(d, &mesh_scene("pipe.ply"), &[], &needles);
+
+    std::os::unix::fs::symlink("/dev/zero", d.join("zero.png")).unwrap();
+    let needles = [
+        "zero.png",
+        "scene.shapes[0].material.tPath",
+        "character device",
+    ];
+    scene_fails(d, &texture_scene("zero.png"), &[], &needles);
+    let o = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+        .arg("compare")
+        .arg(d.join("zero.png"))
+        .arg(d.join("zero.png"))
+        .output()
+        .unwrap();
+    let msg = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{msg}");
+    assert!(
+        msg.contains("zero.png") && msg.contains("character device"),
+        "{msg}"
+    );
+
+    // A texture named without an image extension is not read at all: a warning, and the render
+    // goes ahead without it.
+    let scene = d.join("plain.json");
+    std::fs::write(&scene, texture_scene("/dev/zero")).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+        .arg(&scene)
+        .arg(d.join("plain.png"))
+        .output()
+        .unwrap();
+    let msg = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{msg}");
+    assert!(msg.contains("not an image file name"), "{msg}");
+}

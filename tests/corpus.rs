@@ -120,7 +120,8 @@ fn every_corpus_scene_renders_or_fails_cleanly() {
                     max_depth: 2,
                     ..RenderOptions::default()
                 },
-            );
+            )
+            .unwrap();
             Ok::<_, raytracer::scene::SceneError>((scene.warnings.len(), out))
         }));
         match result {

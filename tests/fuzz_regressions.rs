@@ -64,7 +64,7 @@ fn the_library_fails_cleanly_or_renders() {
             };
             load(&path, &options)
                 .map(|scene| {
-                    let film = render(&scene, &RenderOptions::default()).film;
+                    let film = render(&scene, &RenderOptions::default()).unwrap().film;
                     assert_eq!(film.width, 16, "{name}");
                 })
                 .map_err(|e| e.to_string())

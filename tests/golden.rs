@@ -52,6 +52,7 @@ fn displayed(scene: &Scene) -> Film {
             ..Default::default()
         },
     )
+    .unwrap()
     .film;
     quantised(&film, scene.exposure)
 }
@@ -135,6 +136,7 @@ fn tolerances_catch_shifts_flips_and_brightness_changes() {
                 ..Default::default()
             },
         )
+        .unwrap()
         .film;
         let reference = quantised(&raw, scene.exposure);
         let (w, h) = (reference.width, reference.height);
@@ -196,6 +198,7 @@ fn golden_scenes_render_identically_on_any_thread_count() {
                             ..Default::default()
                         },
                     )
+                    .unwrap()
                     .film
                 })
         };

@@ -438,3 +438,71 @@ fn control_characters_in_paths_are_escaped_in_messages() {
     assert!(!msg.contains('\u{1b}'), "{msg}");
     assert_said_once(&msg);
 }
+
+/// A full disk: a 16 KiB tmpfs (mounting needs root; elsewhere the case says it was not run).
+/// The message is the OS's ("No space left on device"), not an encoder's, for every format.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_disk_says_so() {
+    struct Mount(PathBuf);
+    impl Drop for Mount {
+        fn drop(&mut self) {
+            let _ = Command::new("umount").arg(&self.0).status();
+        }
+    }
+    let (_dir, scene) = write_scene(SMALL);
+    let root = tempfile::tempdir().unwrap();
+    let mounted = Command::new("mount")
+        .args(["-t", "tmpfs", "-o", "size=16k", "tmpfs"])
+        .arg(root.path())
+        .stderr(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    if !mounted {
+        eprintln!("a_full_disk_says_so: not run (cannot mount a tmpfs here)");
+        return;
+    }
+    let _mount = Mount(root.path().to_path_buf());
+    // Fill it, so that even a small, well-compressed PNG does not fit.
+    let filler = root.path().join("filler");
+    let _ = std::fs::write(&filler, vec![7u8; 64 << 10]);
+    for ext in ["png", "exr", "ppm"] {
+        let out = root.path().join(format!("out.{ext}"));
+        let o = raytracer(&[&scene, &out, &"--width", &"200", &"--quiet"]);
+        let msg = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{ext}: {msg}");
+        assert!(msg.contains("No space left on device"), "{msg}");
+        assert_said_once(&msg);
+        assert_eq!(names(root.path()), vec!["filler"]);
+    }
+}
+
+/// An image file larger than any honest encoding of an allowed image is refused from its size
+/// (decoders such as JPEG's read the whole file first): a sparse file, never read.
+#[test]
+fn an_oversized_image_file_is_refused_from_its_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let tex = dir.path().join("huge.jpg");
+    std::fs::File::create(&tex)
+        .unwrap()
+        .set_len(200 << 20)
+        .unwrap();
+    let scene = dir.path().join("scene.json");
+    std::fs::write(
+        &scene,
+        r#"{ "camera": { "width": 8, "height": 6, "fov": 40 },
+             "scene": { "shapes": [ { "type": "sphere", "center": [0, 0, -3], "radius": 1,
+                                      "material": { "texture": "huge.jpg" } } ] } }"#,
+    )
+    .unwrap();
+    let out = dir.path().join("out.png");
+    let o = raytracer(&[&scene, &out, &"--max-texture-pixels", &"1024"]);
+    let msg = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{msg}");
+    assert!(
+        msg.contains("huge.jpg") && msg.contains("over the limit"),
+        "{msg}"
+    );
+    assert!(msg.contains("--max-texture-pixels"), "{msg}");
+    assert!(!out.exists());
+}

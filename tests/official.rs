@@ -27,7 +27,7 @@ fn render_example(without_specular: bool) -> Film {
     if without_specular {
         scene.materials.iter_mut().for_each(|m| m.ks = 0.0);
     }
-    let film = render(&scene, &RenderOptions::default()).film;
+    let film = render(&scene, &RenderOptions::default()).unwrap().film;
     let bytes = raytracer::film::to_rgb8(&film, raytracer::film::ToneMap::Linear, scene.exposure);
     let pixels = bytes
         .chunks(3)

@@ -52,7 +52,7 @@ fn shadow_falls_where_the_light_says() {
                  { "type": "plane", "v0": [-6, 6, 0], "v1": [6, 6, 0], "v2": [6, -6, 0], "v3": [-6, -6, 0],
                    "material": { "kd": 1.0, "ks": 0.0, "specularexponent": 1, "diffusecolor": [1, 1, 1] } } ] } }"#,
     );
-    let film = render(&scene, &RenderOptions::default()).film;
+    let film = render(&scene, &RenderOptions::default()).unwrap().film;
     let light = Vec3::new(-3.0, 0.0, 4.0);
     let (center, r) = (Vec3::new(-1.5, 0.0, 2.0), 0.6f32);
     let (mut shadowed, mut lit) = (0, 0);
@@ -122,7 +122,7 @@ fn texture_texels_land_on_the_expected_pixels() {
     )
     .unwrap();
     let scene = raytracer::scene::load(&scene_path, &Default::default()).unwrap();
-    let film = render(&scene, &RenderOptions::default()).film;
+    let film = render(&scene, &RenderOptions::default()).unwrap().film;
     // The quad spans ±1 at distance 3: tan = 1/3 against tan(20°) = 0.364, i.e. ±18.3 px around
     // 20, so the texel centres (u, v = 1/4, 3/4) fall near pixels 10.9 and 29.2.
     let expect = [
@@ -195,7 +195,7 @@ fn renders_are_identical_on_any_thread_count() {
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| render(&scene, options).film)
+            .install(|| render(&scene, options).unwrap().film)
     };
     let one = on(1, &options);
     let two = on(2, &options);
@@ -316,7 +316,7 @@ fn glass_ray_trees_are_bounded() {
           { "type": "plane", "v0": [-3, 0.5, -3], "v1": [3, 0.5, -3], "v2": [3, 0.5, 3], "v3": [-3, 0.5, 3],
             "material": { "kd": 0, "ks": 0, "specularexponent": 1, "diffusecolor": [0, 0, 0], "kr": 0.5, "kt": 0.9, "eta": 1.5 } } ] } }"#;
     let scene = load_json(json);
-    let out = render(&scene, &RenderOptions::default());
+    let out = render(&scene, &RenderOptions::default()).unwrap();
     let per_sample = out.counts.secondary / 64;
     assert!(per_sample <= raytracer::integrator::MAX_SECONDARY_RAYS_PER_SAMPLE as u64);
     assert!(out.film.pixels.iter().all(|p| p.is_finite()));

@@ -319,7 +319,9 @@ fn bundled_scenes_load_cleanly() {
             path.display(),
             scene.warnings
         );
-        let film = raytracer::render::render(&scene, &Default::default()).film;
+        let film = raytracer::render::render(&scene, &Default::default())
+            .unwrap()
+            .film;
         assert!(film.pixels.iter().all(|p| p.is_finite()));
         assert!(
             film.pixels.iter().any(|p| p.max_element() > 0.05),

@@ -548,7 +548,7 @@ const GRAZING: &str = r#"{ "nbounces": 0,
 #[test]
 fn grazing_light_shows_no_acne() {
     let scene = load_json(GRAZING);
-    let film = render(&scene, &RenderOptions::default()).film;
+    let film = render(&scene, &RenderOptions::default()).unwrap().film;
     let light = glam::DVec3::new(-40.0, 30.0, 0.8);
     let (mut checked, mut worst, mut min_cos) = (0, 0.0f64, 1.0f64);
     for y in 0..film.height {
@@ -666,7 +666,7 @@ fn closed_mesh_lets_no_background_through() {
             faces.join(",")
         );
         let scene = load_json(&json);
-        let film = render(&scene, &RenderOptions::default()).film;
+        let film = render(&scene, &RenderOptions::default()).unwrap().film;
         // Inscribed radius of a level-3 icosphere: above 0.99 of the circumradius.
         let mut inside = 0;
         for y in 0..96 {

@@ -45,12 +45,14 @@ fn sobol_renders_are_identical_on_any_thread_count() {
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| render(&scene, &options).film)
+            .install(|| render(&scene, &options).unwrap().film)
     };
     let (one, two) = (on(1), on(2));
     assert!(one.pixels == two.pixels);
     // And it differs from the scene's own jittered sampling, yet agrees with it closely.
-    let own = render(&scene, &with_trace(TraceOptions::default())).film;
+    let own = render(&scene, &with_trace(TraceOptions::default()))
+        .unwrap()
+        .film;
     assert!(own.pixels != one.pixels);
     let flip = mean_flip(&own, &one, Region::full(48, 36));
     assert!(flip < 0.05, "{flip}");
@@ -60,7 +62,9 @@ fn sobol_renders_are_identical_on_any_thread_count() {
 fn overrides_that_restate_the_scene_change_no_pixel() {
     // penumbra.json's light is jittered with 4×4 = 16 samples.
     let scene = penumbra(48);
-    let own = render(&scene, &with_trace(TraceOptions::default())).film;
+    let own = render(&scene, &with_trace(TraceOptions::default()))
+        .unwrap()
+        .film;
     let restated = render(
         &scene,
         &with_trace(TraceOptions {
@@ -69,6 +73,7 @@ fn overrides_that_restate_the_scene_change_no_pixel() {
             ..Default::default()
         }),
     )
+    .unwrap()
     .film;
     assert!(own.pixels == restated.pixels);
 }
@@ -76,14 +81,15 @@ fn overrides_that_restate_the_scene_change_no_pixel() {
 #[test]
 fn work_skipping_stays_close_to_the_plain_render() {
     let scene = penumbra(64);
-    let plain = render(&scene, &with_trace(TraceOptions::default()));
+    let plain = render(&scene, &with_trace(TraceOptions::default())).unwrap();
     let adaptive = render(
         &scene,
         &with_trace(TraceOptions {
             adaptive_lights: true,
             ..Default::default()
         }),
-    );
+    )
+    .unwrap();
     // Fewer shadow rays, nearly the same image (the occluders here are larger than the gaps
     // between the probes' rays).
     assert!(adaptive.counts.shadow < plain.counts.shadow);
@@ -97,7 +103,8 @@ fn work_skipping_stays_close_to_the_plain_render() {
             cutoff: Some(DEFAULT_CUTOFF),
             ..Default::default()
         }),
-    );
+    )
+    .unwrap();
     assert!(cut.film.pixels == plain.film.pixels);
 }
 
@@ -111,14 +118,15 @@ fn the_cutoff_prunes_weak_branches_of_glass() {
         },
     )
     .unwrap();
-    let plain = render(&scene, &with_trace(TraceOptions::default()));
+    let plain = render(&scene, &with_trace(TraceOptions::default())).unwrap();
     let cut = render(
         &scene,
         &with_trace(TraceOptions {
             cutoff: Some(DEFAULT_CUTOFF),
             ..Default::default()
         }),
-    );
+    )
+    .unwrap();
     assert!(cut.counts.secondary <= plain.counts.secondary);
     let r = Region::full(plain.film.width, plain.film.height);
     let flip = mean_flip(&plain.film, &cut.film, r);

@@ -14,7 +14,8 @@ use std::path::Path;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SizeLimit {
     pub bytes: u64,
-    /// The flag that sets it, e.g. `--max-scene-bytes`, for the error message.
+    /// The flag that sets it, e.g. `--max-scene-bytes`, for the error message; empty where no
+    /// flag raises it.
     pub flag: &'static str,
 }
 
@@ -95,11 +96,16 @@ pub fn checked_size(file: &File, limit: SizeLimit) -> io::Result<u64> {
 }
 
 fn too_large(size: u64, limit: SizeLimit) -> io::Error {
+    let raise = if limit.flag.is_empty() {
+        String::new()
+    } else {
+        format!(" (raise it with {})", limit.flag)
+    };
     io::Error::new(
         io::ErrorKind::InvalidData,
         format!(
-            "the file is {} bytes, over the limit of {} bytes (raise it with {})",
-            size, limit.bytes, limit.flag
+            "the file is {} bytes, over the limit of {} bytes{raise}",
+            size, limit.bytes
         ),
     )
 }

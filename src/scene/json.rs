@@ -1,20 +1,112 @@
 //! A thin, location-aware view of a parsed JSON document. Parsing is lenient in the ways real
 //! scene files need (`//` and `/* */` comments, trailing commas; jsonc-parser does it), and every
 //! value keeps its place in the text so errors can name `file:line:column` and the JSON path.
+//!
+//! Costs stay linear in the size of the file whatever its shape: a member of an object with many
+//! members is found through an index built once per object, and a column is counted from the
+//! nearest of a fixed set of checkpoints rather than from the start of its line (a file can be one
+//! line with a warning every few bytes). [`work_count`] counts the steps both take, so tests can
+//! check that growth without timing anything.
 
+use std::cell::{Cell, RefCell};
+use std::collections::HashMap;
+use std::hash::{BuildHasher, RandomState};
 use std::path::{Path, PathBuf};
 
-use jsonc_parser::ast::{ObjectPropName, Value};
+use jsonc_parser::ast::{ObjectProp, ObjectPropName, Value};
 use jsonc_parser::common::Ranged;
 
 use super::error::{Location, SceneError};
 use crate::math::Vec3;
+
+/// Bytes between character-count checkpoints: a column costs at most this many byte reads on top
+/// of a binary search over the line starts, and the table takes one `usize` per this many bytes.
+const CHECKPOINT_BYTES: usize = 256;
+
+/// Objects with at most this many members are searched member by member; larger ones get an
+/// index on their first lookup. Most objects in scene files are this small, and a scan of them
+/// costs less than building an index.
+const LINEAR_LOOKUP_MAX: usize = 16;
+
+thread_local! {
+    static WORK: Cell<u64> = const { Cell::new(0) };
+}
+
+/// Steps taken on this thread so far by [`Source`] and [`Node`] lookups: bytes read to place
+/// columns and build their checkpoints, member names compared, hashed or indexed. The count only
+/// grows; take the difference around a load to see how its work grows with the input.
+pub fn work_count() -> u64 {
+    WORK.with(Cell::get)
+}
+
+fn count_work(steps: usize) {
+    WORK.with(|w| w.set(w.get().wrapping_add(steps as u64)));
+}
+
+/// Whether `b` continues a UTF-8 sequence (rather than starting a character).
+fn is_continuation(b: u8) -> bool {
+    b & 0xC0 == 0x80
+}
+
+fn count_chars(bytes: &[u8]) -> usize {
+    count_work(bytes.len());
+    bytes.iter().filter(|&&b| !is_continuation(b)).count()
+}
+
+/// Names mapped to their first position in a list, for lookups that must not scan the list.
+///
+/// The index keeps only a hash of each name (with the standard library's per-process random
+/// keys, so no file can be written to collide) and the first position that had it; a lookup
+/// checks the name found there, and only a collision falls back to reading the list in order.
+#[derive(Default)]
+pub struct NameIndex {
+    hasher: RandomState,
+    first: HashMap<u64, usize>,
+    len: usize,
+}
+
+impl NameIndex {
+    /// An index of `names`; a name listed twice keeps its first position.
+    pub fn new<'n>(names: impl ExactSizeIterator<Item = &'n str>) -> NameIndex {
+        let mut index = NameIndex {
+            first: HashMap::with_capacity(names.len()),
+            ..NameIndex::default()
+        };
+        for name in names {
+            index.push(name);
+        }
+        index
+    }
+
+    /// Adds `name` at the next position.
+    pub fn push(&mut self, name: &str) {
+        count_work(1);
+        let h = self.hasher.hash_one(name);
+        self.first.entry(h).or_insert(self.len);
+        self.len += 1;
+    }
+
+    /// The first position of `name`, in the list whose name at position `i` is `name_at(i)`.
+    pub fn find<'n>(&self, name: &str, name_at: impl Fn(usize) -> &'n str) -> Option<usize> {
+        count_work(1);
+        let i = *self.first.get(&self.hasher.hash_one(name))?;
+        if name_at(i) == name {
+            return Some(i);
+        }
+        count_work(self.len);
+        (0..self.len).find(|&j| name_at(j) == name)
+    }
+}
 
 /// The text of a scene file and where its lines start.
 pub struct Source<'t> {
     pub file: PathBuf,
     text: &'t str,
     line_starts: Vec<usize>,
+    /// `checkpoints[k]`: the number of characters in the first `k × CHECKPOINT_BYTES` bytes.
+    checkpoints: Vec<usize>,
+    /// Member indexes of the large objects looked into so far, by the object's start offset.
+    members: RefCell<HashMap<usize, NameIndex>>,
 }
 
 impl<'t> Source<'t> {
@@ -22,11 +114,27 @@ impl<'t> Source<'t> {
         let line_starts = std::iter::once(0)
             .chain(text.match_indices('\n').map(|(i, _)| i + 1))
             .collect();
+        let mut checkpoints = Vec::with_capacity(text.len() / CHECKPOINT_BYTES + 2);
+        let mut chars = 0;
+        checkpoints.push(chars);
+        for block in text.as_bytes().chunks(CHECKPOINT_BYTES) {
+            chars += count_chars(block);
+            checkpoints.push(chars);
+        }
         Source {
             file: file.to_path_buf(),
             text,
             line_starts,
+            checkpoints,
+            members: RefCell::new(HashMap::new()),
         }
+    }
+
+    /// The number of characters before byte `offset` (at most the text's length).
+    fn chars_before(&self, offset: usize) -> usize {
+        let block = offset / CHECKPOINT_BYTES;
+        let from = block * CHECKPOINT_BYTES;
+        self.checkpoints[block] + count_chars(&self.text.as_bytes()[from..offset])
     }
 
     /// 1-based line and column (in characters) of a byte offset.
@@ -34,11 +142,28 @@ impl<'t> Source<'t> {
         let line = self.line_starts.partition_point(|&s| s <= offset).max(1);
         let start = self.line_starts[line - 1];
         let end = offset.min(self.text.len());
-        let column = self
-            .text
-            .get(start..end)
-            .map_or(end - start, |s| s.chars().count());
+        // An offset inside a character (which the parser never gives) counts bytes.
+        let column = if self.text.is_char_boundary(end) {
+            self.chars_before(end) - self.chars_before(start)
+        } else {
+            end - start
+        };
         (line, column + 1)
+    }
+
+    /// The position of member `key` in `props`, the members of the object that starts at byte
+    /// `start` of this text.
+    fn member_position(&self, start: usize, props: &[ObjectProp], key: &str) -> Option<usize> {
+        if props.len() <= LINEAR_LOOKUP_MAX {
+            let found = props.iter().position(|p| prop_name(&p.name) == key);
+            count_work(found.map_or(props.len(), |i| i + 1));
+            return found;
+        }
+        let mut indexes = self.members.borrow_mut();
+        indexes
+            .entry(start)
+            .or_insert_with(|| NameIndex::new(props.iter().map(|p| prop_name(&p.name))))
+            .find(key, |i| prop_name(&props[i].name))
     }
 
     /// Parses the text into a value tree.
@@ -74,7 +199,8 @@ impl<'t> Source<'t> {
     }
 }
 
-/// A value in the document with its JSON path.
+/// A value in the document with its JSON path. Its value must come from its source's
+/// [`Source::parse`].
 #[derive(Clone)]
 pub struct Node<'a, 't> {
     pub value: &'a Value<'t>,
@@ -148,10 +274,8 @@ impl<'a, 't> Node<'a, 't> {
         let Value::Object(o) = self.value else {
             return None;
         };
-        o.properties
-            .iter()
-            .find(|p| prop_name(&p.name) == key)
-            .map(|p| self.child(&p.value, key.to_string()))
+        let i = self.src.member_position(o.start(), &o.properties, key)?;
+        Some(self.child(&o.properties[i].value, key.to_string()))
     }
 
     /// The first present member among `keys` (spellings of the same concept).
@@ -343,6 +467,58 @@ mod tests {
             other => panic!("{other:?}"),
         }
         assert!(Source::new(Path::new("e.json"), "").parse().is_err());
+    }
+
+    /// The column as counted from the start of its line, character by character.
+    fn column_by_scanning(text: &str, offset: usize) -> (usize, usize) {
+        let before = &text[..offset];
+        let line = before.matches('\n').count() + 1;
+        let start = before.rfind('\n').map_or(0, |i| i + 1);
+        (line, text[start..offset].chars().count() + 1)
+    }
+
+    #[test]
+    fn columns_from_checkpoints_match_counting_from_the_line_start() {
+        // Long lines of one-, two-, three- and four-byte characters, so that lines, characters
+        // and checkpoints straddle each other in every way.
+        let mut text = String::new();
+        for i in 0..2000 {
+            text.push(['a', 'é', '€', '𝄞'][i % 4]);
+            if i % 333 == 0 {
+                text.push('\n');
+            }
+            if i % 700 == 0 {
+                text.push_str("\n\n");
+            }
+        }
+        let src = Source::new(Path::new("s.json"), &text);
+        for offset in (0..=text.len()).filter(|&o| text.is_char_boundary(o)) {
+            assert_eq!(
+                src.line_column(offset),
+                column_by_scanning(&text, offset),
+                "offset {offset}"
+            );
+        }
+        // Past the end, the column stops at the end of the last line.
+        let end = src.line_column(text.len());
+        assert_eq!(src.line_column(text.len() + 10), end);
+    }
+
+    #[test]
+    fn large_objects_find_the_first_of_duplicate_keys() {
+        let mut text = String::from("{");
+        for i in 0..(3 * LINEAR_LOOKUP_MAX) {
+            text.push_str(&format!("\"k{i}\": {i}, "));
+        }
+        text.push_str("\"k5\": 99, \"last\": 7}");
+        let src = Source::new(Path::new("s.json"), &text);
+        let v = src.parse().unwrap();
+        let root = Node::root(&v, &src);
+        assert_eq!(root.get("k5").unwrap().f64().unwrap(), 5.0);
+        assert_eq!(root.get("last").unwrap().f64().unwrap(), 7.0);
+        assert_eq!(root.get("k47").unwrap().path, "k47");
+        assert!(root.get("k48").is_none());
+        assert!(root.get("k").is_none());
     }
 
     #[test]

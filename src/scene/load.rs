@@ -17,12 +17,13 @@ use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
 
 use super::error::{SceneError, Warning};
-use super::json::{Node, Source};
-use super::mesh_file::{read_mesh, MeshData};
+use super::json::{NameIndex, Node, Source};
+use super::mesh_file::{read_mesh_with, MeshData, MeshLimits};
 use super::{RenderMode, Scene, Variant};
 use crate::camera::{Camera, Handedness, Lens};
 use crate::files::input::{self, SizeLimit};
 use crate::geometry::{Cylinder, Mesh, MeshUv, Primitive, Shape, Sphere, Triangle};
+use crate::image_io::ReadLimits;
 use crate::light::{Intensity, Light};
 use crate::material::Material;
 use crate::math::{Vec2, Vec3};
@@ -40,6 +41,13 @@ pub const DEFAULT_MAX_LIGHT_SAMPLES: u32 = 65_536;
 /// Default cap on the scene file's size: 64 MiB. The parsed document takes about ten times the
 /// file's size in memory, and the largest real scene files (inline meshes) are under 2 MiB.
 pub const DEFAULT_MAX_SCENE_BYTES: u64 = 64 << 20;
+/// Default cap on one texture's `width × height`: 2^26 texels (67 megapixels, e.g. 8192²). A
+/// texture is stored as 12-byte float texels, so this is 768 MiB; the check uses the image's
+/// header, before anything is decoded, so a small file claiming a huge image fails at once.
+pub const DEFAULT_MAX_TEXTURE_PIXELS: u64 = 1 << 26;
+/// Default cap on a mesh file's size: 2 GiB. Mesh files are read whole into memory; the largest
+/// in the coursework corpus are about 1 MB.
+pub const DEFAULT_MAX_MESH_BYTES: u64 = 2 << 30;
 /// Index of refraction of a transmissive material that gives none (crown glass).
 pub const DEFAULT_ETA: f32 = 1.5;
 /// `nbounces` when a file has none.
@@ -60,6 +68,10 @@ pub struct LoadOptions {
     pub max_light_samples: u32,
     /// Largest scene file accepted, in bytes.
     pub max_scene_bytes: u64,
+    /// Most texels (`width × height`) one texture may have, checked from the image's header.
+    pub max_texture_pixels: u64,
+    /// Largest mesh file accepted, in bytes.
+    pub max_mesh_bytes: u64,
 }
 
 impl Default for LoadOptions {
@@ -73,6 +85,8 @@ impl Default for LoadOptions {
             max_triangles: DEFAULT_MAX_TRIANGLES,
             max_light_samples: DEFAULT_MAX_LIGHT_SAMPLES,
             max_scene_bytes: DEFAULT_MAX_SCENE_BYTES,
+            max_texture_pixels: DEFAULT_MAX_TEXTURE_PIXELS,
+            max_mesh_bytes: DEFAULT_MAX_MESH_BYTES,
         }
     }
 }
@@ -148,8 +162,34 @@ const SHAPE_TYPES: &[&str] = &[
 ];
 const LIGHT_TYPES: &[&str] = &["pointlight", "arealight"];
 
-/// Materials defined once by name (`"materials": [{"name": "red", …}]`) and referred to by it.
-type Library<'a, 't> = Vec<(String, Node<'a, 't>)>;
+/// Materials defined once by name (`"materials": [{"name": "red", …}]`) and referred to by it,
+/// in file order; a name defined twice means its first definition. Found through an index, as a
+/// scene can define and use tens of thousands.
+#[derive(Default)]
+struct Library<'a, 't> {
+    defs: Vec<(String, Node<'a, 't>)>,
+    index: NameIndex,
+}
+
+impl<'a, 't> Library<'a, 't> {
+    fn new() -> Self {
+        Self::default()
+    }
+
+    fn push(&mut self, def: (String, Node<'a, 't>)) {
+        self.index.push(&def.0);
+        self.defs.push(def);
+    }
+
+    fn find(&self, name: &str) -> Option<&(String, Node<'a, 't>)> {
+        let i = self.index.find(name, |i| self.defs[i].0.as_str())?;
+        Some(&self.defs[i])
+    }
+
+    fn names(&self) -> Vec<&str> {
+        self.defs.iter().map(|(n, _)| n.as_str()).collect()
+    }
+}
 
 struct Loader<'o> {
     options: &'o LoadOptions,
@@ -937,7 +977,13 @@ impl<'o> Loader<'o> {
         let mut data = if let Some(fnode) = s.get_any(&file_keys) {
             let rel = fnode.str()?;
             let path = self.resolve(&fnode, rel)?;
-            let mut data = read_mesh(&path).map_err(|e| fnode.error(e.to_string()))?;
+            let limits = MeshLimits {
+                max_bytes: self.options.max_mesh_bytes,
+                max_triangles: self.options.max_triangles,
+                triangles_before: self.triangles,
+            };
+            let mut data =
+                read_mesh_with(&path, &limits).map_err(|e| fnode.error(e.to_string()))?;
             // PLY and OBJ files put v = 0 at the bottom of the image (the OpenGL convention of
             // the tools that write them); textures here have v = 0 at the top row.
             if let Some(uvs) = data.uvs.as_mut() {
@@ -1170,10 +1216,10 @@ impl<'o> Loader<'o> {
         let mut m = Material::default();
         let mut node = s.get("material");
         if let Some(named) = node.as_ref().and_then(|n| n.str().ok()) {
-            match library.iter().find(|(name, _)| name == named) {
+            match library.find(named) {
                 Some((_, def)) => node = Some(def.clone()),
                 None => {
-                    let names: Vec<&str> = library.iter().map(|(n, _)| n.as_str()).collect();
+                    let names = library.names();
                     let at = node.unwrap_or_else(|| s.clone());
                     return Err(at.error(format!(
                         "no material named '{named}' (the scene defines: {})",
@@ -1307,7 +1353,11 @@ impl<'o> Loader<'o> {
         if let Some(&i) = self.texture_index.get(&path) {
             return Ok(Some(i));
         }
-        let tex = Texture::load(&path)
+        let limits = ReadLimits {
+            max_pixels: self.options.max_texture_pixels,
+            flag: Some("--max-texture-pixels"),
+        };
+        let tex = Texture::load_with(&path, &limits)
             .map_err(|e| node.error(format!("cannot load the texture: {e}")))?;
         if tex.width == 0 || tex.height == 0 {
             return Err(node.error(format!("the texture {} is empty", shown(&path))));

@@ -22,7 +22,7 @@ pub fn load_json(json: &str) -> Scene {
 }
 
 pub fn render_json(json: &str, options: &RenderOptions) -> Film {
-    render(&load_json(json), options).film
+    render(&load_json(json), options).unwrap().film
 }
 
 pub fn render_default(json: &str) -> Film {

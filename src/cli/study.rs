@@ -1,26 +1,26 @@
 //! `raytracer study SCENE`: how fast each area-light sampler's error falls, per shadow ray and
-//! per second (library code in `raytracer::study`). Writes a CSV of the runs and a log-log plot,
+//! per second (library code in `crate::study`). Writes a CSV of the runs and a log-log plot,
 //! and prints the fitted slopes and the time each sampler needs to reach a target MSE.
 //! `--skip-work` instead times the work-skipping switches against a plain render.
 
-use raytracer::files::shown;
+use crate::files::shown;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Parser;
 
-use raytracer::files::output::{Outputs, PendingFile};
-use raytracer::film::ToneMap;
-use raytracer::image_io::{encode_image, read_image};
-use raytracer::integrator::DEFAULT_CUTOFF;
-use raytracer::metric::Region;
-use raytracer::render::RenderOptions;
-use raytracer::sampling::Method;
-use raytracer::scene::{load, LoadOptions};
-use raytracer::study::{self, StudyOptions};
+use crate::files::output::{Outputs, PendingFile};
+use crate::film::ToneMap;
+use crate::image_io::{encode_image, read_image};
+use crate::integrator::DEFAULT_CUTOFF;
+use crate::metric::Region;
+use crate::render::RenderOptions;
+use crate::sampling::Method;
+use crate::scene::{load, LoadOptions};
+use crate::study::{self, StudyOptions};
 
-use crate::exit_code;
+use super::{exit_code, values};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -59,7 +59,7 @@ struct StudyCli {
     reference_samples: u32,
     /// Target MSE for the equal-error times (default: what random reaches at 256 samples, or at
     /// its largest count if that is fewer).
-    #[arg(long, value_parser = positive_f64)]
+    #[arg(long, value_parser = values::positive_f64)]
     target_mse: Option<f64>,
     /// Samplers to run, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "random,jittered,sobol")]
@@ -88,26 +88,13 @@ struct StudyCli {
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=65536))]
     spp: u32,
     /// Cut-off for --skip-work's adc-bailout runs (between 0 and 1).
-    #[arg(long, default_value_t = DEFAULT_CUTOFF, value_parser = unit_interval_f32)]
+    #[arg(long, default_value_t = DEFAULT_CUTOFF, value_parser = values::unit_interval_f32)]
     adc_bailout: f32,
 }
 
-/// A command-line number that must be finite and > 0.
-fn positive_f64(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-        Ok(_) => Err(format!("must be a finite number > 0, found {text}")),
-        Err(_) => Err(format!("'{text}' is not a number")),
-    }
-}
-
-/// A command-line number that must lie in [0, 1].
-fn unit_interval_f32(text: &str) -> Result<f32, String> {
-    match text.parse::<f32>() {
-        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
-        Ok(_) => Err(format!("must be between 0 and 1, found {text}")),
-        Err(_) => Err(format!("'{text}' is not a number")),
-    }
+/// Parses the subcommand's command line without running it.
+pub(super) fn try_parse(args: &[std::ffi::OsString]) -> Result<(), clap::Error> {
+    <StudyCli as Parser>::try_parse_from(args).map(drop)
 }
 
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
@@ -115,13 +102,10 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
         Ok(c) => c,
         Err(code) => return code,
     };
-    let pool = match rayon::ThreadPoolBuilder::new()
-        .num_threads(cli.threads.unwrap_or(0) as usize)
-        .build()
-    {
+    let pool = match values::thread_pool(cli.threads) {
         Ok(p) => p,
         Err(e) => {
-            eprintln!("error: cannot start worker threads: {e}");
+            eprintln!("error: {e}");
             return ExitCode::from(exit_code::BAD_INPUT);
         }
     };
@@ -141,7 +125,7 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     }
 }
 
-fn load_scene(cli: &StudyCli) -> Result<raytracer::scene::Scene, String> {
+fn load_scene(cli: &StudyCli) -> Result<crate::scene::Scene, String> {
     let options = LoadOptions {
         width: cli.width.or(if cli.quick { Some(48) } else { None }),
         height: cli.height,
@@ -212,7 +196,7 @@ fn run(cli: &StudyCli) -> Result<(), String> {
             };
             eprintln!("study: reference, jittered, {n} shadow rays per area light, {w}×{h} …");
             let t = Instant::now();
-            let f = study::reference(&scene, n);
+            let f = study::reference(&scene, n).map_err(|e| e.to_string())?;
             eprintln!("study: reference took {:.2} s", t.elapsed().as_secs_f64());
             let bytes = encode_image(&reference_out, &f, ToneMap::Linear, 1.0)
                 .map_err(|e| e.to_string())?;
@@ -244,7 +228,8 @@ fn run(cli: &StudyCli) -> Result<(), String> {
             r.mse_region,
             r.flip
         );
-    });
+    })
+    .map_err(|e| e.to_string())?;
     if let Some(r) = runs
         .iter()
         .find(|r| !(r.mse.is_finite() && r.mse_region.is_finite() && r.flip.is_finite()))
@@ -322,7 +307,8 @@ fn skip_work(cli: &StudyCli) -> Result<(), String> {
         cli.spp,
         cli.runs
     );
-    let rows = study::skip_work(&scene, &base, cli.adc_bailout, cli.runs as usize);
+    let rows = study::skip_work(&scene, &base, cli.adc_bailout, cli.runs as usize)
+        .map_err(|e| e.to_string())?;
     if let Some(r) = rows
         .iter()
         .find(|r| !(r.flip.is_finite() && r.mse.is_finite()))

@@ -1,6 +1,6 @@
-//! `raytracer bench`: the command line of the benchmarks in [`raytracer::bench`].
+//! `raytracer bench`: the command line of the benchmarks in [`crate::bench`].
 
-use raytracer::files::output::{Outputs, PendingFile};
+use crate::files::output::{Outputs, PendingFile};
 use std::ffi::OsString;
 use std::io::Write;
 use std::path::PathBuf;
@@ -9,13 +9,13 @@ use std::time::Duration;
 
 use clap::Parser;
 
-use raytracer::accel::bvh::STACK_SIZE;
-use raytracer::bench::{
+use crate::accel::bvh::STACK_SIZE;
+use crate::bench::{
     crossover, default_scenes_dir, format_csv, format_table, row_fields, sphere_grid_triangles,
     table1, throughput, TableOptions, Throughput, TABLE_HEADER,
 };
 
-use crate::exit_code;
+use super::{exit_code, values};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -61,6 +61,11 @@ struct BenchCli {
     none_limit: f64,
 }
 
+/// Parses the subcommand's command line without running it.
+pub(super) fn try_parse(args: &[std::ffi::OsString]) -> Result<(), clap::Error> {
+    <BenchCli as Parser>::try_parse_from(args).map(drop)
+}
+
 pub fn main(args: &[OsString]) -> ExitCode {
     let cli = match exit_code::parse::<BenchCli>(args) {
         Ok(c) => c,
@@ -70,13 +75,10 @@ pub fn main(args: &[OsString]) -> ExitCode {
         eprintln!("error: --none-limit must be a finite number of seconds, at least 0");
         return ExitCode::from(exit_code::USAGE);
     }
-    let pool = match rayon::ThreadPoolBuilder::new()
-        .num_threads(cli.threads.unwrap_or(0) as usize)
-        .build()
-    {
+    let pool = match values::thread_pool(cli.threads.map(u64::from)) {
         Ok(p) => p,
         Err(e) => {
-            eprintln!("error: cannot start worker threads: {e}");
+            eprintln!("error: {e}");
             return ExitCode::from(exit_code::BAD_INPUT);
         }
     };
@@ -174,7 +176,7 @@ fn run(cli: &BenchCli) -> Result<(), String> {
         println!(
             "Table 1: 1 spp, {threads} thread(s), leaf size {leaf_size}, medians of {runs} run(s); \
              memory = accelerator + primitive records ({} B each)",
-            std::mem::size_of::<raytracer::geometry::Primitive>()
+            std::mem::size_of::<crate::geometry::Primitive>()
         );
         let rows = table1(&options, |r| {
             eprintln!("  {}", row_fields(r).join(" "));

@@ -2,18 +2,18 @@
 //! CI. Exit status 0 when within the given thresholds, 3 when worse, 1 when an image cannot be
 //! read or the sizes or region do not fit, 2 on a usage error.
 
-use raytracer::files::shown;
+use crate::files::shown;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
 
-use raytracer::files::output::{Outputs, PendingFile};
-use raytracer::film::ToneMap;
-use raytracer::image_io::{encode_image, read_image};
-use raytracer::metric::{flip_map, heat_map, mse, psnr, Region};
+use crate::files::output::{Outputs, PendingFile};
+use crate::film::ToneMap;
+use crate::image_io::{encode_image, read_image};
+use crate::metric::{flip_map, heat_map, mse, psnr, Region};
 
-use crate::exit_code;
+use super::{exit_code, values};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -31,28 +31,24 @@ struct CompareCli {
     #[arg(long)]
     region: Option<Region>,
     /// Fail (exit 3) if the MSE is above this (or not a number: an image holds NaN).
-    #[arg(long, value_parser = threshold)]
+    #[arg(long, value_parser = values::non_negative_f64)]
     max_mse: Option<f64>,
     /// Fail (exit 3) if the mean FLIP is above this (or not a number).
-    #[arg(long, value_parser = threshold)]
+    #[arg(long, value_parser = values::non_negative_f64)]
     max_flip: Option<f64>,
     /// Write a FLIP heat map (PNG, PPM or EXR) here.
     #[arg(long)]
     diff: Option<PathBuf>,
 }
 
-/// A threshold: a finite number ≥ 0.
-fn threshold(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
-        Ok(_) => Err(format!("must be a finite number ≥ 0, found {text}")),
-        Err(_) => Err(format!("'{text}' is not a number")),
-    }
-}
-
 /// Whether `value` is within `max`; NaN is never within.
 fn within(value: f64, max: f64) -> bool {
     value <= max
+}
+
+/// Parses the subcommand's command line without running it.
+pub(super) fn try_parse(args: &[std::ffi::OsString]) -> Result<(), clap::Error> {
+    <CompareCli as Parser>::try_parse_from(args).map(drop)
 }
 
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {

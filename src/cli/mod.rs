@@ -1,0 +1,78 @@
+//! The command line: one module per subcommand, each a thin layer that parses its flags, calls
+//! the library and maps errors to [`exit_code`]s.
+//!
+//! | command | module |
+//! |---|---|
+//! | `raytracer SCENE OUT` | [`render`] |
+//! | `raytracer compare REF TEST` | [`compare`] |
+//! | `raytracer study SCENE` | [`study`] |
+//! | `raytracer bench` | [`mod@bench`] |
+
+pub mod bench;
+pub mod compare;
+pub mod exit_code;
+pub mod render;
+pub mod study;
+pub mod values;
+
+use std::ffi::OsString;
+use std::process::ExitCode;
+
+/// The subcommand `args[1]` names, if any (a scene file literally named `bench` is rendered
+/// when given as `./bench`).
+fn subcommand(args: &[OsString]) -> Option<&'static str> {
+    let first = args.get(1)?;
+    ["bench", "compare", "study"]
+        .into_iter()
+        .find(|name| first == name)
+}
+
+/// Runs the command line `args` (program name first) and returns the process's exit status.
+pub fn main(args: &[OsString]) -> ExitCode {
+    crate::files::output::report_file_size_limit();
+    match subcommand(args) {
+        Some("bench") => bench::main(&args[1..]),
+        Some("compare") => compare::main(&args[1..]),
+        Some("study") => study::main(&args[1..]),
+        _ => render::main(args),
+    }
+}
+
+/// Parses `args` as [`main`] would, without running anything: for tests and fuzzing of the
+/// parser and of every flag's validation.
+pub fn try_parse(args: &[OsString]) -> Result<(), clap::Error> {
+    match subcommand(args) {
+        Some("bench") => bench::try_parse(&args[1..]),
+        Some("compare") => compare::try_parse(&args[1..]),
+        Some("study") => study::try_parse(&args[1..]),
+        _ => render::try_parse(args),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(line: &str) -> Result<(), clap::Error> {
+        let args: Vec<OsString> = line.split(' ').map(OsString::from).collect();
+        try_parse(&args)
+    }
+
+    #[test]
+    fn every_subcommand_parses_and_validates_its_numbers() {
+        parse("raytracer s.json o.png --spp 4 --exposure 0.5").unwrap();
+        parse("raytracer compare a.png b.png --max-mse 0.01").unwrap();
+        parse("raytracer study s.json --quick").unwrap();
+        parse("raytracer bench --quick").unwrap();
+        for bad in [
+            "raytracer s.json o.png --exposure NaN",
+            "raytracer s.json o.png --threads 0",
+            "raytracer compare a.png b.png --max-flip nan",
+            "raytracer study s.json --threads 0",
+            "raytracer bench --runs 0",
+            "raytracer s.json",
+        ] {
+            assert!(parse(bad).is_err(), "{bad}");
+        }
+    }
+}

@@ -1,0 +1,248 @@
+//! `raytracer SCENE OUT`: render a scene to an image.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use clap::Parser;
+
+use crate::accel::AccelKind;
+use crate::files::output::{OutputError, Outputs, PendingFile};
+use crate::files::shown;
+use crate::film::ToneMap;
+use crate::image_io::{encode_image, OutputFormat};
+use crate::render::{render, RenderOptions};
+use crate::sampling::Method;
+use crate::scene::{load, LoadOptions};
+
+use super::{exit_code, values};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "raytracer",
+    version,
+    about = "Renders a coursework JSON scene to a PPM, PNG or EXR image.",
+    after_help = "Exit codes: 0 rendered; 1 the scene or an asset is bad (or the image could not be written); 2 usage error (also: the output is one of the scene's files); 130 interrupted (nothing written).\n\
+                  Output format by extension: .ppm (binary P6), .png (8-bit), .exr (linear 32-bit float, not tone-mapped).\n\
+                  Inputs must be regular files (not FIFOs or devices); the image is written atomically and never onto the scene, a texture or a mesh it uses.\n\
+                  Image comparison: raytracer compare --help. Benchmarks: raytracer bench --help."
+)]
+struct Cli {
+    /// The scene file (JSON; comments and trailing commas allowed).
+    scene: PathBuf,
+    /// The image to write: .ppm, .png or .exr.
+    output: PathBuf,
+    /// Samples per pixel (stratified). 1 traces one ray through each pixel centre.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    spp: u32,
+    /// Placement of pixel and lens samples: random, jittered or sobol.
+    #[arg(long, default_value = "jittered")]
+    pixel_sampler: Method,
+    /// Sampler for pixel, lens and every area light (overrides --pixel-sampler and each light's
+    /// method): random, jittered or sobol.
+    #[arg(long)]
+    sampler: Option<Method>,
+    /// Adaptive area lights: probe a 3×3 grid on each light first and trace all its shadow rays
+    /// only where the probes disagree (faster; can miss occluders between the probes' rays).
+    #[arg(long)]
+    adaptive_lights: bool,
+    /// Skip reflection/refraction rays whose accumulated weight is below X (POV-Ray's
+    /// adc_bailout; 1/255 = 0.0039 is one 8-bit step).
+    #[arg(long, value_name = "X", value_parser = values::unit_interval_f32)]
+    adc_bailout: Option<f32>,
+    /// Seed for every random number (the image is a pure function of the scene, options and seed).
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Override the image width (keeps the aspect ratio unless --height is also given).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    width: Option<u32>,
+    /// Override the image height.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    height: Option<u32>,
+    /// Tone map for 8-bit output: linear (the coursework's: ×255, clamp), srgb, reinhard.
+    #[arg(long, default_value = "linear")]
+    tonemap: ToneMap,
+    /// Multiplies the scene's exposure (a finite number ≥ 0, as in the scene file).
+    #[arg(long, default_value_t = 1.0, value_parser = values::non_negative_f32)]
+    exposure: f32,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    threads: Option<u64>,
+    /// Accelerator: auto (SAH BVH, or none for tiny scenes), none, median, sah.
+    #[arg(long, default_value = "auto")]
+    accel: AccelKind,
+    /// Most primitives per BVH leaf.
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u64).range(1..=255))]
+    leaf_size: u64,
+    /// Cap on reflection/refraction depth, on top of the scene's nbounces.
+    #[arg(long)]
+    max_depth: Option<u32>,
+    /// Extra folder to resolve texture and mesh paths against (repeatable).
+    #[arg(long = "asset-dir")]
+    asset_dirs: Vec<PathBuf>,
+    /// Refuse images with more pixels than this.
+    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_PIXELS)]
+    max_pixels: u64,
+    /// Refuse scenes whose nbounces is larger than this.
+    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_BOUNCES)]
+    max_bounces: u32,
+    /// Refuse scenes with more triangles than this.
+    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_TRIANGLES)]
+    max_triangles: usize,
+    /// Refuse area lights that take more shadow rays per shading point than this.
+    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_LIGHT_SAMPLES)]
+    max_light_samples: u32,
+    /// Refuse scene files larger than this many bytes (checked before reading; the parsed
+    /// document takes about ten times the file's size).
+    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_SCENE_BYTES)]
+    max_scene_bytes: u64,
+    /// Refuse textures with more texels (width × height) than this, read from the image's header
+    /// before decoding (a texture takes 12 bytes per texel; the default is 8192², 768 MiB).
+    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_TEXTURE_PIXELS)]
+    max_texture_pixels: u64,
+    /// Refuse mesh files (PLY, OBJ) larger than this many bytes; they are read whole.
+    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_MESH_BYTES)]
+    max_mesh_bytes: u64,
+    /// No progress bar, no warnings, no summary line.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
+    let cli = match exit_code::parse::<Cli>(args) {
+        Ok(c) => c,
+        Err(code) => return code,
+    };
+    let interrupted = interrupt_flag();
+    match run(&cli, &interrupted) {
+        Ok(()) => ExitCode::from(exit_code::OK),
+        Err(Failure::Usage(msg)) => {
+            eprintln!("error: {msg}");
+            ExitCode::from(exit_code::USAGE)
+        }
+        Err(Failure::Input(msg)) => {
+            eprintln!("error: {msg}");
+            ExitCode::from(exit_code::BAD_INPUT)
+        }
+        Err(Failure::Interrupted) => {
+            eprintln!("interrupted: no image written");
+            ExitCode::from(exit_code::INTERRUPTED)
+        }
+    }
+}
+
+/// Parses a render command line without running it.
+pub(super) fn try_parse(args: &[std::ffi::OsString]) -> Result<(), clap::Error> {
+    <Cli as Parser>::try_parse_from(args).map(drop)
+}
+
+enum Failure {
+    Usage(String),
+    /// A bad scene, asset or output; the message names the file (our errors carry their cause
+    /// in their own text, so it is printed once, not followed by its source chain).
+    Input(String),
+    Interrupted,
+}
+
+impl From<OutputError> for Failure {
+    fn from(e: OutputError) -> Failure {
+        match e {
+            OutputError::IsInput { .. } | OutputError::Twice { .. } => {
+                Failure::Usage(e.to_string())
+            }
+            _ => Failure::Input(e.to_string()),
+        }
+    }
+}
+
+fn run(cli: &Cli, interrupted: &Arc<AtomicBool>) -> Result<(), Failure> {
+    if OutputFormat::from_path(&cli.output).is_none() {
+        return Err(Failure::Usage(format!(
+            "cannot tell the image format of '{}': use .ppm, .png or .exr",
+            shown(&cli.output)
+        )));
+    }
+    // The scene file first, before reading it; then every texture and mesh it names.
+    Outputs::from_inputs([cli.scene.as_path()]).claim(&cli.output)?;
+    let load_options = LoadOptions {
+        width: cli.width,
+        height: cli.height,
+        asset_dirs: cli.asset_dirs.clone(),
+        max_pixels: cli.max_pixels,
+        max_bounces: cli.max_bounces,
+        max_triangles: cli.max_triangles,
+        max_light_samples: cli.max_light_samples,
+        max_scene_bytes: cli.max_scene_bytes,
+        max_texture_pixels: cli.max_texture_pixels,
+        max_mesh_bytes: cli.max_mesh_bytes,
+    };
+    let scene = load(&cli.scene, &load_options).map_err(|e| Failure::Input(e.to_string()))?;
+    if !cli.quiet {
+        for w in &scene.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
+    Outputs::from_inputs(scene.inputs.iter().map(PathBuf::as_path)).claim(&cli.output)?;
+    // Created now, so a folder that cannot be written is reported before the render; removed
+    // unless the finished image is committed.
+    let pending = PendingFile::create(&cli.output)?;
+    if interrupted.load(Ordering::Relaxed) {
+        return Err(Failure::Interrupted);
+    }
+    let options = RenderOptions {
+        spp: cli.spp,
+        pixel_method: cli.sampler.unwrap_or(cli.pixel_sampler),
+        seed: cli.seed,
+        accel: cli.accel,
+        leaf_size: cli.leaf_size as usize,
+        max_depth: cli.max_depth.unwrap_or(u32::MAX),
+        trace: crate::integrator::TraceOptions {
+            light_method: cli.sampler,
+            light_samples: None,
+            adaptive_lights: cli.adaptive_lights,
+            cutoff: cli.adc_bailout,
+        },
+        progress: !cli.quiet && std::io::stderr().is_terminal(),
+        cancel: Some(interrupted.clone()),
+    };
+    let pool = values::thread_pool(cli.threads).map_err(Failure::Input)?;
+    let out = pool
+        .install(|| render(&scene, &options))
+        .map_err(|e| Failure::Input(e.to_string()))?;
+    if out.cancelled || interrupted.load(Ordering::Relaxed) {
+        return Err(Failure::Interrupted);
+    }
+    let exposure = scene.exposure * cli.exposure;
+    let bytes = encode_image(&cli.output, &out.film, cli.tonemap, exposure)
+        .map_err(|e| Failure::Input(e.to_string()))?;
+    pending.commit(&bytes)?;
+    if !cli.quiet {
+        let secs = out.render_time.as_secs_f64();
+        let rays = out.counts.total();
+        eprintln!(
+            "{}: {}×{}, {} spp, {:.3} s (build {:.3} s), {} rays, {:.2} Mrays/s",
+            shown(&cli.output),
+            out.film.width,
+            out.film.height,
+            options.spp,
+            secs,
+            out.build_time.as_secs_f64(),
+            rays,
+            rays as f64 / secs.max(1e-9) / 1e6
+        );
+    }
+    Ok(())
+}
+
+/// A flag that Ctrl-C (SIGINT), SIGTERM or SIGHUP sets, so the render stops within one camera
+/// sample or shading point (a fraction of a second), the temporary output file is removed and nothing is written. If the handler cannot
+/// be installed, the signals keep their default effect, which also writes nothing: the image is
+/// only ever renamed into place complete.
+fn interrupt_flag() -> Arc<AtomicBool> {
+    let flag = Arc::new(AtomicBool::new(false));
+    let setter = flag.clone();
+    let _ = ctrlc::set_handler(move || setter.store(true, Ordering::Relaxed));
+    flag
+}
