@@ -506,3 +506,64 @@ fn an_oversized_image_file_is_refused_from_its_size() {
     assert!(msg.contains("--max-texture-pixels"), "{msg}");
     assert!(!out.exists());
 }
+
+/// Ctrl-C while a large mesh is read (a phase that does not look at the flag) still ends the
+/// command with 130 and leaves the earlier image and no temporary file.
+#[cfg(unix)]
+#[test]
+fn an_interrupt_while_reading_the_scene_ends_cleanly() {
+    use std::fmt::Write as _;
+    let dir = tempfile::tempdir().unwrap();
+    let n = 400;
+    let mut obj = String::new();
+    for i in 0..n {
+        for j in 0..n {
+            writeln!(obj, "v {i} {j} {}", (i * j % 7) as f32 * 0.1).unwrap();
+        }
+    }
+    for i in 0..n - 1 {
+        for j in 0..n - 1 {
+            let a = i * n + j + 1;
+            writeln!(
+                obj,
+                "f {a} {} {}\nf {} {} {}",
+                a + 1,
+                a + n,
+                a + 1,
+                a + n + 1,
+                a + n
+            )
+            .unwrap();
+        }
+    }
+    std::fs::write(dir.path().join("big.obj"), obj).unwrap();
+    let scene = dir.path().join("scene.json");
+    std::fs::write(
+        &scene,
+        r#"{ "camera": { "width": 64, "height": 48, "fov": 40, "position": [200, -300, 200],
+                          "lookat": [0, 1, -0.5], "up": [0, 0, 1] },
+             "scene": { "lightsources": [ { "type": "pointlight", "position": [200, 200, 400], "intensity": [9, 9, 9] } ],
+                        "shapes": [ { "type": "mesh", "filename": "big.obj", "material": { "kd": 0.5 } } ] } }"#,
+    )
+    .unwrap();
+    let out = dir.path().join("out.png");
+    std::fs::write(&out, b"an earlier render").unwrap();
+    let child = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+        .arg(&scene)
+        .arg(&out)
+        .args(["--spp", "4096", "--quiet"])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(100));
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    assert!(stderr(&o).contains("no image written"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&out).unwrap(), b"an earlier render");
+    assert_eq!(names(dir.path()), vec!["big.obj", "out.png", "scene.json"]);
+}

@@ -11,6 +11,7 @@
 pub mod bench;
 pub mod compare;
 pub mod exit_code;
+pub mod interrupt;
 pub mod render;
 pub mod study;
 pub mod values;

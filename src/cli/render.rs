@@ -3,8 +3,6 @@
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
 
 use clap::Parser;
 
@@ -17,6 +15,7 @@ use crate::render::{render, RenderOptions};
 use crate::sampling::Method;
 use crate::scene::{load, LoadOptions};
 
+use super::interrupt::Interrupt;
 use super::{exit_code, values};
 
 #[derive(Parser, Debug)]
@@ -115,8 +114,8 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
         Ok(c) => c,
         Err(code) => return code,
     };
-    let interrupted = interrupt_flag();
-    match run(&cli, &interrupted) {
+    let interrupt = Interrupt::install();
+    match run(&cli, &interrupt) {
         Ok(()) => ExitCode::from(exit_code::OK),
         Err(Failure::Usage(msg)) => {
             eprintln!("error: {msg}");
@@ -157,7 +156,7 @@ impl From<OutputError> for Failure {
     }
 }
 
-fn run(cli: &Cli, interrupted: &Arc<AtomicBool>) -> Result<(), Failure> {
+fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
     if OutputFormat::from_path(&cli.output).is_none() {
         return Err(Failure::Usage(format!(
             "cannot tell the image format of '{}': use .ppm, .png or .exr",
@@ -188,7 +187,8 @@ fn run(cli: &Cli, interrupted: &Arc<AtomicBool>) -> Result<(), Failure> {
     // Created now, so a folder that cannot be written is reported before the render; removed
     // unless the finished image is committed.
     let pending = PendingFile::create(&cli.output)?;
-    if interrupted.load(Ordering::Relaxed) {
+    interrupt.pending(pending.temp_path());
+    if interrupt.is_set() {
         return Err(Failure::Interrupted);
     }
     let options = RenderOptions {
@@ -205,19 +205,19 @@ fn run(cli: &Cli, interrupted: &Arc<AtomicBool>) -> Result<(), Failure> {
             cutoff: cli.adc_bailout,
         },
         progress: !cli.quiet && std::io::stderr().is_terminal(),
-        cancel: Some(interrupted.clone()),
+        cancel: Some(interrupt.flag()),
     };
     let pool = values::thread_pool(cli.threads).map_err(Failure::Input)?;
     let out = pool
         .install(|| render(&scene, &options))
         .map_err(|e| Failure::Input(e.to_string()))?;
-    if out.cancelled || interrupted.load(Ordering::Relaxed) {
+    if out.cancelled || interrupt.is_set() {
         return Err(Failure::Interrupted);
     }
     let exposure = scene.exposure * cli.exposure;
     let bytes = encode_image(&cli.output, &out.film, cli.tonemap, exposure)
         .map_err(|e| Failure::Input(e.to_string()))?;
-    pending.commit(&bytes)?;
+    interrupt.writing(|| pending.commit(&bytes))?;
     if !cli.quiet {
         let secs = out.render_time.as_secs_f64();
         let rays = out.counts.total();
@@ -234,15 +234,4 @@ fn run(cli: &Cli, interrupted: &Arc<AtomicBool>) -> Result<(), Failure> {
         );
     }
     Ok(())
-}
-
-/// A flag that Ctrl-C (SIGINT), SIGTERM or SIGHUP sets, so the render stops within one camera
-/// sample or shading point (a fraction of a second), the temporary output file is removed and nothing is written. If the handler cannot
-/// be installed, the signals keep their default effect, which also writes nothing: the image is
-/// only ever renamed into place complete.
-fn interrupt_flag() -> Arc<AtomicBool> {
-    let flag = Arc::new(AtomicBool::new(false));
-    let setter = flag.clone();
-    let _ = ctrlc::set_handler(move || setter.store(true, Ordering::Relaxed));
-    flag
 }

@@ -205,6 +205,11 @@ impl PendingFile {
         &self.path
     }
 
+    /// The temporary file's path (for a signal handler that must remove it before exiting).
+    pub fn temp_path(&self) -> &Path {
+        self.tmp.path()
+    }
+
     /// Writes `bytes`, syncs them and renames the file over the target. On error the temporary
     /// file is removed and the target is untouched.
     pub fn commit(mut self, bytes: &[u8]) -> Result<(), OutputError> {
