@@ -567,3 +567,36 @@ fn an_interrupt_while_reading_the_scene_ends_cleanly() {
     assert_eq!(std::fs::read(&out).unwrap(), b"an earlier render");
     assert_eq!(names(dir.path()), vec!["big.obj", "out.png", "scene.json"]);
 }
+
+/// A study stopped by SIGTERM while it renders its reference ends with 130 and leaves none of its
+/// temporary outputs (CSV, plot, reference) in its folder.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_study_leaves_no_temporary_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("study");
+    let child = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+        .arg("study")
+        .arg(repo().join("scenes/penumbra.json"))
+        .arg("--out")
+        .arg(&out)
+        .args(["--reference-samples", "65536"])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Wait until the study has created its folder (and so its temporary outputs).
+    let start = Instant::now();
+    while !out.is_dir() && start.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(Duration::from_millis(200));
+    let killed = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    assert!(stderr(&o).contains("no results written"), "{}", stderr(&o));
+    assert!(names(&out).is_empty(), "{:?}", names(&out));
+}

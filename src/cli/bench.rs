@@ -1,6 +1,6 @@
 //! `raytracer bench`: the command line of the benchmarks in [`crate::bench`].
 
-use crate::files::output::{Outputs, PendingFile};
+use crate::files::output::Outputs;
 use std::ffi::OsString;
 use std::io::Write;
 use std::path::PathBuf;
@@ -15,6 +15,7 @@ use crate::bench::{
     table1, throughput, TableOptions, Throughput, TABLE_HEADER,
 };
 
+use super::interrupt::Interrupt;
 use super::{exit_code, values};
 
 #[derive(Parser, Debug)]
@@ -82,7 +83,8 @@ pub fn main(args: &[OsString]) -> ExitCode {
             return ExitCode::from(exit_code::BAD_INPUT);
         }
     };
-    match pool.install(|| run(&cli)) {
+    let interrupt = Interrupt::install("no CSV written");
+    match pool.install(|| run(&cli, &interrupt)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
@@ -91,7 +93,7 @@ pub fn main(args: &[OsString]) -> ExitCode {
     }
 }
 
-fn run(cli: &BenchCli) -> Result<(), String> {
+fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
     // The CSV may not be one of the bundled scenes the table reads (or anything they use); its
     // folder is checked before the benchmarks run.
     let csv_out = match &cli.csv {
@@ -103,7 +105,7 @@ fn run(cli: &BenchCli) -> Result<(), String> {
             Outputs::from_inputs(inputs.iter().map(PathBuf::as_path))
                 .claim(path)
                 .map_err(|e| e.to_string())?;
-            Some(PendingFile::create(path).map_err(|e| e.to_string())?)
+            Some(interrupt.create(path).map_err(|e| e.to_string())?)
         }
         None => None,
     };
@@ -189,8 +191,8 @@ fn run(cli: &BenchCli) -> Result<(), String> {
     print!("{}", format_table(&header, &rows));
     std::io::stdout().flush().map_err(|e| e.to_string())?;
     if let Some(pending) = csv_out {
-        pending
-            .commit(format_csv(&header, &rows).as_bytes())
+        interrupt
+            .commit(pending, format_csv(&header, &rows).as_bytes())
             .map_err(|e| e.to_string())?;
     }
     Ok(())

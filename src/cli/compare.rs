@@ -8,11 +8,12 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
-use crate::files::output::{Outputs, PendingFile};
+use crate::files::output::Outputs;
 use crate::film::ToneMap;
 use crate::image_io::{encode_image, read_image};
 use crate::metric::{flip_map, heat_map, mse, psnr, Region};
 
+use super::interrupt::Interrupt;
 use super::{exit_code, values};
 
 #[derive(Parser, Debug)]
@@ -56,7 +57,8 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
         Ok(c) => c,
         Err(code) => return code,
     };
-    match run(&cli) {
+    let interrupt = Interrupt::install("no heat map written");
+    match run(&cli, &interrupt) {
         Ok(worse) => ExitCode::from(if worse {
             exit_code::WORSE
         } else {
@@ -85,7 +87,7 @@ impl From<String> for Failure {
 }
 
 /// Prints the metrics; `Ok(true)` when a threshold is exceeded.
-fn run(cli: &CompareCli) -> Result<bool, Failure> {
+fn run(cli: &CompareCli, interrupt: &Interrupt) -> Result<bool, Failure> {
     // The heat map may be neither image; its folder is checked before the work.
     let diff_out = match &cli.diff {
         Some(path) => {
@@ -93,7 +95,7 @@ fn run(cli: &CompareCli) -> Result<bool, Failure> {
             guard
                 .claim(path)
                 .map_err(|e| Failure::Usage(e.to_string()))?;
-            Some(PendingFile::create(path).map_err(|e| e.to_string())?)
+            Some(interrupt.create(path).map_err(|e| e.to_string())?)
         }
         None => None,
     };
@@ -146,7 +148,9 @@ fn run(cli: &CompareCli) -> Result<bool, Failure> {
     if let (Some(path), Some(pending)) = (&cli.diff, diff_out) {
         let heat = heat_map(reference.width, reference.height, &map);
         let bytes = encode_image(path, &heat, ToneMap::Linear, 1.0).map_err(|e| e.to_string())?;
-        pending.commit(&bytes).map_err(|e| e.to_string())?;
+        interrupt
+            .commit(pending, &bytes)
+            .map_err(|e| e.to_string())?;
     }
     let mut worse = false;
     if let Some(m) = cli.max_mse {

@@ -14,14 +14,15 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use super::exit_code;
+use crate::files::output::{OutputError, PendingFile};
 
 /// How long a signalled command may take to stop by itself before it is ended.
 pub const GRACE: Duration = Duration::from_millis(50);
 
 #[derive(Debug)]
 enum Phase {
-    /// Reading, building or rendering; the temporary output, once created.
-    Working(Option<PathBuf>),
+    /// Reading, building or rendering; the temporary outputs created so far.
+    Working(Vec<PathBuf>),
     /// Writing the finished output: not to be cut short.
     Writing,
 }
@@ -31,15 +32,18 @@ enum Phase {
 pub struct Interrupt {
     flag: Arc<AtomicBool>,
     phase: Arc<Mutex<Phase>>,
+    /// What the handler prints when it ends the process, e.g. "no image written".
+    message: &'static str,
 }
 
 impl Interrupt {
     /// Installs the handler. If it cannot be installed, the signals keep their default effect,
     /// which also writes nothing (only the temporary file may then remain).
-    pub fn install() -> Interrupt {
+    pub fn install(message: &'static str) -> Interrupt {
         let interrupt = Interrupt {
             flag: Arc::new(AtomicBool::new(false)),
-            phase: Arc::new(Mutex::new(Phase::Working(None))),
+            phase: Arc::new(Mutex::new(Phase::Working(Vec::new()))),
+            message,
         };
         let handler = interrupt.clone();
         let _ = ctrlc::set_handler(move || handler.on_signal());
@@ -50,11 +54,11 @@ impl Interrupt {
         self.flag.store(true, Ordering::Relaxed);
         std::thread::sleep(GRACE);
         let phase = self.phase.lock().unwrap_or_else(|e| e.into_inner());
-        if let Phase::Working(temp) = &*phase {
-            if let Some(temp) = temp {
+        if let Phase::Working(temps) = &*phase {
+            for temp in temps {
                 let _ = std::fs::remove_file(temp);
             }
-            eprintln!("interrupted: no image written");
+            eprintln!("interrupted: {}", self.message);
             std::process::exit(i32::from(exit_code::INTERRUPTED));
         }
     }
@@ -69,15 +73,44 @@ impl Interrupt {
         self.flag.load(Ordering::Relaxed)
     }
 
-    /// Records the temporary output the handler must remove if it ends the process.
+    /// Records a temporary output the handler must remove if it ends the process.
     pub fn pending(&self, temp: &Path) {
         let mut phase = self.phase.lock().unwrap_or_else(|e| e.into_inner());
-        *phase = Phase::Working(Some(temp.to_path_buf()));
+        if let Phase::Working(temps) = &mut *phase {
+            temps.push(temp.to_path_buf());
+        }
     }
 
-    /// Runs `write` (committing the finished output) without being cut short by a signal.
-    pub fn writing<R>(&self, write: impl FnOnce() -> R) -> R {
-        *self.phase.lock().unwrap_or_else(|e| e.into_inner()) = Phase::Writing;
-        write()
+    /// Creates the temporary output for `path` (see [`PendingFile`]) and records it.
+    pub fn create(&self, path: &Path) -> Result<PendingFile, OutputError> {
+        let pending = PendingFile::create(path)?;
+        self.pending(pending.temp_path());
+        Ok(pending)
+    }
+
+    /// Commits `pending` with `bytes`, not to be cut short by a signal.
+    pub fn commit(&self, pending: PendingFile, bytes: &[u8]) -> Result<(), OutputError> {
+        let temp = pending.temp_path().to_path_buf();
+        self.writing(&temp, || pending.commit(bytes))
+    }
+
+    /// Runs `write` (committing the finished output whose temporary file is `temp`) without
+    /// being cut short by a signal; the other temporary outputs stay the handler's to remove.
+    pub fn writing<R>(&self, temp: &Path, write: impl FnOnce() -> R) -> R {
+        let rest = {
+            let mut phase = self.phase.lock().unwrap_or_else(|e| e.into_inner());
+            let rest = match &mut *phase {
+                Phase::Working(temps) => {
+                    temps.retain(|t| t != temp);
+                    std::mem::take(temps)
+                }
+                Phase::Writing => Vec::new(),
+            };
+            *phase = Phase::Writing;
+            rest
+        };
+        let result = write();
+        *self.phase.lock().unwrap_or_else(|e| e.into_inner()) = Phase::Working(rest);
+        result
     }
 }

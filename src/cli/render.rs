@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 use crate::accel::AccelKind;
-use crate::files::output::{OutputError, Outputs, PendingFile};
+use crate::files::output::{OutputError, Outputs};
 use crate::files::shown;
 use crate::film::ToneMap;
 use crate::image_io::{encode_image, OutputFormat};
@@ -114,7 +114,7 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
         Ok(c) => c,
         Err(code) => return code,
     };
-    let interrupt = Interrupt::install();
+    let interrupt = Interrupt::install("no image written");
     match run(&cli, &interrupt) {
         Ok(()) => ExitCode::from(exit_code::OK),
         Err(Failure::Usage(msg)) => {
@@ -186,8 +186,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
     Outputs::from_inputs(scene.inputs.iter().map(PathBuf::as_path)).claim(&cli.output)?;
     // Created now, so a folder that cannot be written is reported before the render; removed
     // unless the finished image is committed.
-    let pending = PendingFile::create(&cli.output)?;
-    interrupt.pending(pending.temp_path());
+    let pending = interrupt.create(&cli.output)?;
     if interrupt.is_set() {
         return Err(Failure::Interrupted);
     }
@@ -217,7 +216,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
     let exposure = scene.exposure * cli.exposure;
     let bytes = encode_image(&cli.output, &out.film, cli.tonemap, exposure)
         .map_err(|e| Failure::Input(e.to_string()))?;
-    interrupt.writing(|| pending.commit(&bytes))?;
+    interrupt.commit(pending, &bytes)?;
     if !cli.quiet {
         let secs = out.render_time.as_secs_f64();
         let rays = out.counts.total();

@@ -11,6 +11,8 @@ use std::time::Instant;
 use clap::Parser;
 
 use crate::files::output::{Outputs, PendingFile};
+
+use super::interrupt::Interrupt;
 use crate::film::ToneMap;
 use crate::image_io::{encode_image, read_image};
 use crate::integrator::DEFAULT_CUTOFF;
@@ -109,11 +111,12 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
             return ExitCode::from(exit_code::BAD_INPUT);
         }
     };
+    let interrupt = Interrupt::install("no results written");
     let result = pool.install(|| {
         if cli.skip_work {
             skip_work(&cli)
         } else {
-            run(&cli)
+            run(&cli, &interrupt)
         }
     });
     match result {
@@ -134,7 +137,7 @@ fn load_scene(cli: &StudyCli) -> Result<crate::scene::Scene, String> {
     load(&cli.scene, &options).map_err(|e| e.to_string())
 }
 
-fn run(cli: &StudyCli) -> Result<(), String> {
+fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
     let scene = load_scene(cli)?;
     let (w, h) = (scene.camera.width, scene.camera.height);
     if let Some(r) = cli.region {
@@ -158,7 +161,7 @@ fn run(cli: &StudyCli) -> Result<(), String> {
     }
     let mut claim = |path: &Path| -> Result<PendingFile, String> {
         guard.claim(path).map_err(|e| e.to_string())?;
-        PendingFile::create(path).map_err(|e| e.to_string())
+        interrupt.create(path).map_err(|e| e.to_string())
     };
     let csv_out = claim(&csv)?;
     let plot_out = claim(&plot)?;
@@ -201,7 +204,9 @@ fn run(cli: &StudyCli) -> Result<(), String> {
             let bytes = encode_image(&reference_out, &f, ToneMap::Linear, 1.0)
                 .map_err(|e| e.to_string())?;
             if let Some(pending) = reference_pending {
-                pending.commit(&bytes).map_err(|e| e.to_string())?;
+                interrupt
+                    .commit(pending, &bytes)
+                    .map_err(|e| e.to_string())?;
             }
             f
         }
@@ -239,8 +244,8 @@ fn run(cli: &StudyCli) -> Result<(), String> {
             r.sampler, r.samples, r.mse, r.flip
         ));
     }
-    csv_out
-        .commit(study::csv_text(&runs).as_bytes())
+    interrupt
+        .commit(csv_out, study::csv_text(&runs).as_bytes())
         .map_err(|e| e.to_string())?;
     let name = cli
         .scene
@@ -252,7 +257,9 @@ fn run(cli: &StudyCli) -> Result<(), String> {
         None => "whole image".into(),
     };
     let png = study::plot_png(&runs, &format!("{name}: {what}, {w}×{h}"))?;
-    plot_out.commit(&png).map_err(|e| e.to_string())?;
+    interrupt
+        .commit(plot_out, &png)
+        .map_err(|e| e.to_string())?;
 
     println!(
         "MSE over the {what}; slopes fitted over runs with ≥ {} shadow rays",
