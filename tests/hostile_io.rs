@@ -562,8 +562,13 @@ fn an_interrupt_while_reading_the_scene_ends_cleanly() {
         .unwrap();
     assert!(killed.success());
     let o = child.wait_with_output().unwrap();
-    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
-    assert!(stderr(&o).contains("no image written"), "{}", stderr(&o));
+    // On a machine so loaded that the signal came before the handler was installed, the default
+    // action ended the process instead; nothing may be left behind either way.
+    use std::os::unix::process::ExitStatusExt;
+    if o.status.signal() != Some(2) {
+        assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+        assert!(stderr(&o).contains("no image written"), "{}", stderr(&o));
+    }
     assert_eq!(std::fs::read(&out).unwrap(), b"an earlier render");
     assert_eq!(names(dir.path()), vec!["big.obj", "out.png", "scene.json"]);
 }
