@@ -293,14 +293,16 @@ fn triangle_limit_suffix(limit: usize, before: usize) -> String {
     }
 }
 
-/// Reserves room for `count` more items in `v`, or reports that the memory is not there.
+/// Reserves room for `count` more items in `v`, or reports that the memory is not there. Growth
+/// is amortised (an empty `v` gets exactly `count`), so reserving face by face past the first
+/// estimate stays linear.
 fn reserve<T>(
     path: &Path,
     v: &mut Vec<T>,
     count: usize,
     what: &'static str,
 ) -> Result<(), MeshFileError> {
-    v.try_reserve_exact(count)
+    v.try_reserve(count)
         .map_err(|_| MeshFileError::OutOfMemory {
             path: path.to_path_buf(),
             count,
