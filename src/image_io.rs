@@ -28,7 +28,7 @@ use image::{ColorType, ExtendedColorType, ImageDecoder, ImageEncoder, ImageReade
 
 use crate::files::input::{self, SizeLimit};
 use crate::files::output::{write_atomic, OutputError};
-use crate::files::shown;
+use crate::files::{raise_hint, shown};
 use crate::film::{to_rgb8, Film, ToneMap};
 
 /// The extensions [`write_image`] accepts, as listed in error messages.
@@ -76,7 +76,7 @@ impl ReadLimits {
                 .max_pixels
                 .saturating_mul(MAX_FILE_BYTES_PER_PIXEL)
                 .saturating_add(DECODER_HEADROOM),
-            flag: self.flag.unwrap_or(""),
+            flag: self.flag,
         }
     }
 
@@ -93,14 +93,6 @@ impl ReadLimits {
                 .saturating_add(DECODER_HEADROOM),
         );
         limits
-    }
-}
-
-/// " (raise it with FLAG)", or nothing where no flag raises it.
-fn raise_hint(flag: &Option<&'static str>) -> String {
-    match flag {
-        Some(flag) => format!(" (raise it with {flag})"),
-        None => String::new(),
     }
 }
 
@@ -189,7 +181,7 @@ pub enum ImageError {
          pixels{}",
         shown(path),
         u64::from(*width) * u64::from(*height),
-        raise_hint(flag)
+        raise_hint(*flag)
     )]
     TooLarge {
         /// The input path.
@@ -207,7 +199,7 @@ pub enum ImageError {
     #[error(
         "cannot read image '{}': {source}; the limit is {limit} pixels{}",
         shown(path),
-        raise_hint(flag)
+        raise_hint(*flag)
     )]
     Limits {
         /// The input path.

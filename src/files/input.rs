@@ -10,13 +10,15 @@ use std::fs::{File, Metadata};
 use std::io::{self, Read};
 use std::path::Path;
 
+use super::raise_hint;
+
 /// A cap on the bytes a whole-file read accepts, with the command-line flag that raises it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SizeLimit {
     pub bytes: u64,
-    /// The flag that sets it, e.g. `--max-scene-bytes`, for the error message; empty where no
+    /// The flag that sets it, e.g. `--max-scene-bytes`, for the error message; `None` where no
     /// flag raises it.
-    pub flag: &'static str,
+    pub flag: Option<&'static str>,
 }
 
 /// What kind of file `meta` describes, for messages ("a folder", "a FIFO (named pipe)", …), or
@@ -96,16 +98,13 @@ pub fn checked_size(file: &File, limit: SizeLimit) -> io::Result<u64> {
 }
 
 fn too_large(size: u64, limit: SizeLimit) -> io::Error {
-    let raise = if limit.flag.is_empty() {
-        String::new()
-    } else {
-        format!(" (raise it with {})", limit.flag)
-    };
     io::Error::new(
         io::ErrorKind::InvalidData,
         format!(
-            "the file is {} bytes, over the limit of {} bytes{raise}",
-            size, limit.bytes
+            "the file is {} bytes, over the limit of {} bytes{}",
+            size,
+            limit.bytes,
+            raise_hint(limit.flag)
         ),
     )
 }
@@ -137,7 +136,7 @@ mod tests {
 
     const BIG: SizeLimit = SizeLimit {
         bytes: 1 << 20,
-        flag: "--max-test-bytes",
+        flag: Some("--max-test-bytes"),
     };
 
     #[test]
@@ -155,7 +154,7 @@ mod tests {
         std::fs::write(&path, vec![b' '; 101]).unwrap();
         let limit = SizeLimit {
             bytes: 100,
-            flag: "--max-x",
+            flag: Some("--max-x"),
         };
         let msg = read(&path, limit).unwrap_err().to_string();
         assert!(msg.contains("101 bytes") && msg.contains("100") && msg.contains("--max-x"));

@@ -13,6 +13,14 @@ pub mod output;
 use std::fmt;
 use std::path::Path;
 
+/// " (raise it with FLAG)" for a limit's message, or nothing where no flag raises it.
+pub fn raise_hint(flag: Option<&str>) -> String {
+    match flag {
+        Some(flag) => format!(" (raise it with {flag})"),
+        None => String::new(),
+    }
+}
+
 /// A path for messages: as `Path::display`, with control characters (newlines, escape
 /// sequences) written as escapes so a hostile file name cannot rewrite the terminal.
 pub fn shown(path: &Path) -> Shown<'_> {

@@ -96,7 +96,7 @@ impl Default for LoadOptions {
 pub fn load(path: &Path, options: &LoadOptions) -> Result<Scene, SceneError> {
     let limit = SizeLimit {
         bytes: options.max_scene_bytes,
-        flag: "--max-scene-bytes",
+        flag: Some("--max-scene-bytes"),
     };
     let bytes = input::read(path, limit).map_err(|source| SceneError::Read {
         file: path.to_path_buf(),

@@ -375,7 +375,7 @@ pub fn read_obj(path: &Path) -> Result<MeshData, MeshFileError> {
 fn read_bytes(path: &Path, limits: &MeshLimits) -> Result<Vec<u8>, MeshFileError> {
     let limit = SizeLimit {
         bytes: limits.max_bytes,
-        flag: "--max-mesh-bytes",
+        flag: Some("--max-mesh-bytes"),
     };
     let bytes = input::read(path, limit).map_err(|source| MeshFileError::Io {
         path: path.to_path_buf(),
