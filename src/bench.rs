@@ -4,7 +4,6 @@
 //! Everything here is deterministic except the timings: scenes and rays are pure functions of
 //! their parameters (random numbers come from [`crate::sampling`]'s hashes).
 
-use crate::files::shown;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -12,6 +11,7 @@ use rayon::prelude::*;
 
 use crate::accel::{Accel, AccelKind};
 use crate::camera::{Camera, Handedness};
+use crate::files::shown;
 use crate::geometry::{Mesh, MeshUv, Primitive, Shape, Sphere, Triangle};
 use crate::integrator::Tracer;
 use crate::light::{Intensity, Light};

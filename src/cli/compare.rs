@@ -2,13 +2,13 @@
 //! CI. Exit status 0 when within the given thresholds, 3 when worse, 1 when an image cannot be
 //! read or the sizes or region do not fit, 2 on a usage error.
 
-use crate::files::shown;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
 
 use crate::files::output::Outputs;
+use crate::files::shown;
 use crate::film::ToneMap;
 use crate::image_io::{encode_image, read_image};
 use crate::metric::{flip_map, heat_map, mse, psnr, Region};

@@ -3,7 +3,6 @@
 //! and prints the fitted slopes and the time each sampler needs to reach a target MSE.
 //! `--skip-work` instead times the work-skipping switches against a plain render.
 
-use crate::files::shown;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -11,8 +10,7 @@ use std::time::Instant;
 use clap::Parser;
 
 use crate::files::output::{Outputs, PendingFile};
-
-use super::interrupt::Interrupt;
+use crate::files::shown;
 use crate::film::ToneMap;
 use crate::image_io::{encode_image, read_image};
 use crate::integrator::DEFAULT_CUTOFF;
@@ -22,6 +20,7 @@ use crate::sampling::Method;
 use crate::scene::{load, LoadOptions};
 use crate::study::{self, StudyOptions};
 
+use super::interrupt::Interrupt;
 use super::{exit_code, values};
 
 #[derive(Parser, Debug)]

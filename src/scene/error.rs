@@ -1,8 +1,9 @@
 //! Errors and warnings from reading a scene, each with the file and the place in it.
 
-use crate::files::shown;
 use std::fmt;
 use std::path::PathBuf;
+
+use crate::files::shown;
 
 /// Where in a scene file something is: 1-based line and column, and the JSON path
 /// (`scene.shapes[3].material.kd`).

@@ -12,7 +12,6 @@
 //!   the render allocates anything for them (mesh files are read first; their readers refuse
 //!   counts the file cannot hold).
 
-use crate::files::shown;
 use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
 
@@ -22,6 +21,7 @@ use super::mesh_file::{read_mesh_with, MeshData, MeshLimits};
 use super::{RenderMode, Scene, Variant};
 use crate::camera::{Camera, Handedness, Lens};
 use crate::files::input::{self, SizeLimit};
+use crate::files::shown;
 use crate::geometry::{Cylinder, Mesh, MeshUv, Primitive, Shape, Sphere, Triangle};
 use crate::image_io::ReadLimits;
 use crate::light::{Intensity, Light};

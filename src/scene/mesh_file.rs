@@ -63,8 +63,6 @@
 //! limit leaves is an error naming `--max-triangles`. The vertex, normal, texture coordinate and
 //! triangle buffers are reserved fallibly, so a size the machine cannot hold is an error.
 
-use crate::files::input::{self, SizeLimit};
-use crate::files::shown;
 use std::io::{BufRead, ErrorKind};
 use std::path::{Path, PathBuf};
 
@@ -73,6 +71,9 @@ use ply_rs_bw::parser::{ParseError, Parser, Reader};
 use ply_rs_bw::ply::{
     BeginList, ElementDef, Encoding, PropertyAccess, PropertyAccessResult, PropertyType, ScalarType,
 };
+
+use crate::files::input::{self, SizeLimit};
+use crate::files::shown;
 
 /// A triangle mesh as read from a file: shared vertex buffers and triangle indices.
 #[derive(Debug, Clone, Default, PartialEq)]
