@@ -13,8 +13,9 @@ use crate::film::ToneMap;
 use crate::image_io::{encode_image, read_image};
 use crate::metric::{flip_map, heat_map, mse, psnr, Region};
 
+use super::exit_code::{self, Failure};
 use super::interrupt::Interrupt;
-use super::{exit_code, values};
+use super::values;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -64,25 +65,7 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
         } else {
             exit_code::OK
         }),
-        Err(Failure::Usage(msg)) => {
-            eprintln!("error: {msg}");
-            ExitCode::from(exit_code::USAGE)
-        }
-        Err(Failure::Input(msg)) => {
-            eprintln!("error: {msg}");
-            ExitCode::from(exit_code::BAD_INPUT)
-        }
-    }
-}
-
-enum Failure {
-    Usage(String),
-    Input(String),
-}
-
-impl From<String> for Failure {
-    fn from(msg: String) -> Failure {
-        Failure::Input(msg)
+        Err(failure) => failure.report(),
     }
 }
 

@@ -1,4 +1,6 @@
-//! Exit statuses shared by the `raytracer` subcommands.
+//! Exit statuses shared by the `raytracer` subcommands, and the failures that lead to them.
+
+use crate::files::output::OutputError;
 
 /// Success: the image was written, or the comparison is within its thresholds.
 pub const OK: u8 = 0;
@@ -21,4 +23,56 @@ pub fn parse<T: clap::Parser>(
         let _ = e.print();
         std::process::ExitCode::from(code)
     })
+}
+
+/// Why a subcommand stopped without finishing its work; [`Failure::report`] prints it and gives
+/// the exit status.
+pub enum Failure {
+    /// The command line is wrong, or an output would be one of the inputs.
+    Usage(String),
+    /// A bad scene, asset or image, or an output that cannot be written. The message names the
+    /// file and carries its cause in its own text, so it is printed once, without a source chain.
+    Input(String),
+    /// A signal stopped the work; the message says what was not written.
+    Interrupted(&'static str),
+}
+
+impl Failure {
+    /// Prints the failure on stderr and returns its exit status.
+    pub fn report(self) -> std::process::ExitCode {
+        let code = match self {
+            Failure::Usage(msg) => {
+                eprintln!("error: {msg}");
+                USAGE
+            }
+            Failure::Input(msg) => {
+                eprintln!("error: {msg}");
+                BAD_INPUT
+            }
+            Failure::Interrupted(what) => {
+                eprintln!("interrupted: {what}");
+                INTERRUPTED
+            }
+        };
+        std::process::ExitCode::from(code)
+    }
+}
+
+impl From<String> for Failure {
+    fn from(msg: String) -> Failure {
+        Failure::Input(msg)
+    }
+}
+
+impl From<OutputError> for Failure {
+    /// An output that is an input (or another output) is a usage error; any other output
+    /// failure is the output's.
+    fn from(e: OutputError) -> Failure {
+        match e {
+            OutputError::IsInput { .. } | OutputError::Twice { .. } => {
+                Failure::Usage(e.to_string())
+            }
+            _ => Failure::Input(e.to_string()),
+        }
+    }
 }

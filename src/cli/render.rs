@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 use crate::accel::AccelKind;
-use crate::files::output::{OutputError, Outputs};
+use crate::files::output::Outputs;
 use crate::files::shown;
 use crate::film::ToneMap;
 use crate::image_io::{encode_image, OutputFormat};
@@ -15,8 +15,9 @@ use crate::render::{render, RenderOptions};
 use crate::sampling::Method;
 use crate::scene::{load, LoadOptions};
 
+use super::exit_code::{self, Failure};
 use super::interrupt::Interrupt;
-use super::{exit_code, values};
+use super::values;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -109,51 +110,24 @@ struct Cli {
     quiet: bool,
 }
 
+/// What an interrupted render did not write.
+const NOT_WRITTEN: &str = "no image written";
+
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     let cli = match exit_code::parse::<Cli>(args) {
         Ok(c) => c,
         Err(code) => return code,
     };
-    let interrupt = Interrupt::install("no image written");
+    let interrupt = Interrupt::install(NOT_WRITTEN);
     match run(&cli, &interrupt) {
         Ok(()) => ExitCode::from(exit_code::OK),
-        Err(Failure::Usage(msg)) => {
-            eprintln!("error: {msg}");
-            ExitCode::from(exit_code::USAGE)
-        }
-        Err(Failure::Input(msg)) => {
-            eprintln!("error: {msg}");
-            ExitCode::from(exit_code::BAD_INPUT)
-        }
-        Err(Failure::Interrupted) => {
-            eprintln!("interrupted: no image written");
-            ExitCode::from(exit_code::INTERRUPTED)
-        }
+        Err(failure) => failure.report(),
     }
 }
 
 /// Parses a render command line without running it.
 pub(super) fn try_parse(args: &[std::ffi::OsString]) -> Result<(), clap::Error> {
     <Cli as Parser>::try_parse_from(args).map(drop)
-}
-
-enum Failure {
-    Usage(String),
-    /// A bad scene, asset or output; the message names the file (our errors carry their cause
-    /// in their own text, so it is printed once, not followed by its source chain).
-    Input(String),
-    Interrupted,
-}
-
-impl From<OutputError> for Failure {
-    fn from(e: OutputError) -> Failure {
-        match e {
-            OutputError::IsInput { .. } | OutputError::Twice { .. } => {
-                Failure::Usage(e.to_string())
-            }
-            _ => Failure::Input(e.to_string()),
-        }
-    }
 }
 
 fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
@@ -188,7 +162,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
     // unless the finished image is committed.
     let pending = interrupt.create(&cli.output)?;
     if interrupt.is_set() {
-        return Err(Failure::Interrupted);
+        return Err(Failure::Interrupted(NOT_WRITTEN));
     }
     let options = RenderOptions {
         spp: cli.spp,
@@ -211,7 +185,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         .install(|| render(&scene, &options))
         .map_err(|e| Failure::Input(e.to_string()))?;
     if out.cancelled || interrupt.is_set() {
-        return Err(Failure::Interrupted);
+        return Err(Failure::Interrupted(NOT_WRITTEN));
     }
     let exposure = scene.exposure * cli.exposure;
     let bytes = encode_image(&cli.output, &out.film, cli.tonemap, exposure)
