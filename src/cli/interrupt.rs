@@ -74,7 +74,7 @@ impl Interrupt {
     }
 
     /// Records a temporary output the handler must remove if it ends the process.
-    pub fn pending(&self, temp: &Path) {
+    fn pending(&self, temp: &Path) {
         let mut phase = self.phase.lock().unwrap_or_else(|e| e.into_inner());
         if let Phase::Working(temps) = &mut *phase {
             temps.push(temp.to_path_buf());
@@ -96,7 +96,7 @@ impl Interrupt {
 
     /// Runs `write` (committing the finished output whose temporary file is `temp`) without
     /// being cut short by a signal; the other temporary outputs stay the handler's to remove.
-    pub fn writing<R>(&self, temp: &Path, write: impl FnOnce() -> R) -> R {
+    fn writing<R>(&self, temp: &Path, write: impl FnOnce() -> R) -> R {
         let rest = {
             let mut phase = self.phase.lock().unwrap_or_else(|e| e.into_inner());
             let rest = match &mut *phase {

@@ -200,11 +200,6 @@ impl PendingFile {
         })
     }
 
-    /// The target path.
-    pub fn path(&self) -> &Path {
-        &self.path
-    }
-
     /// The temporary file's path (for a signal handler that must remove it before exiting).
     pub fn temp_path(&self) -> &Path {
         self.tmp.path()
