@@ -23,7 +23,7 @@ pub struct SizeLimit {
 
 /// What kind of file `meta` describes, for messages ("a folder", "a FIFO (named pipe)", …), or
 /// `None` for a regular file.
-fn not_regular(meta: &Metadata) -> Option<&'static str> {
+pub fn irregular_kind(meta: &Metadata) -> Option<&'static str> {
     let t = meta.file_type();
     if t.is_file() {
         return None;
@@ -47,28 +47,28 @@ fn not_regular(meta: &Metadata) -> Option<&'static str> {
             return Some("a socket");
         }
     }
-    Some("not a regular file")
+    Some("an unknown kind of file")
 }
 
-fn refuse(kind: &str) -> io::Error {
-    io::Error::new(
-        io::ErrorKind::InvalidInput,
-        format!("it is {kind}, not a regular file"),
-    )
+/// An error saying what `meta` is if it is not a regular file ("it is a FIFO (named pipe), not a
+/// regular file").
+pub fn check_regular(meta: &Metadata) -> io::Result<()> {
+    match irregular_kind(meta) {
+        None => Ok(()),
+        Some(kind) => Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("it is {kind}, not a regular file"),
+        )),
+    }
 }
 
 /// Opens `path` for reading if it is a regular file (after following symbolic links). The error
 /// says what the path is instead (a folder, a FIFO, a device) or why it cannot be opened; it
 /// does not repeat the path, which the caller names.
 pub fn open(path: &Path) -> io::Result<File> {
-    let meta = std::fs::metadata(path)?;
-    if let Some(kind) = not_regular(&meta) {
-        return Err(refuse(kind));
-    }
+    check_regular(&std::fs::metadata(path)?)?;
     let file = open_nonblocking(path)?;
-    if let Some(kind) = not_regular(&file.metadata()?) {
-        return Err(refuse(kind));
-    }
+    check_regular(&file.metadata()?)?;
     Ok(file)
 }
 

@@ -13,7 +13,7 @@
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
-use super::shown;
+use super::{input, shown};
 
 /// Why an output cannot be written. Every message names the output.
 #[derive(Debug, thiserror::Error)]
@@ -122,18 +122,14 @@ impl Outputs {
     /// Checks that `path` may be written: not an input, not another output, not something other
     /// than a regular file. Records it as an output.
     pub fn claim(&mut self, path: &Path) -> Result<(), OutputError> {
-        if let Ok(meta) = std::fs::metadata(path) {
-            if !meta.is_file() {
-                let kind = if meta.is_dir() {
-                    "a folder"
-                } else {
-                    "a device, FIFO or socket"
-                };
-                return Err(OutputError::NotRegular {
-                    path: path.to_path_buf(),
-                    kind,
-                });
-            }
+        if let Some(kind) = std::fs::metadata(path)
+            .ok()
+            .and_then(|meta| input::irregular_kind(&meta))
+        {
+            return Err(OutputError::NotRegular {
+                path: path.to_path_buf(),
+                kind,
+            });
         }
         let id = file_id(path);
         if let Some(id) = &id {

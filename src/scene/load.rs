@@ -1390,15 +1390,13 @@ impl<'o> Loader<'o> {
         }
         for candidate in candidates {
             if let Ok(meta) = std::fs::metadata(&candidate) {
-                if meta.is_file() {
-                    if !self.inputs.contains(&candidate) {
-                        self.inputs.push(candidate.clone());
-                    }
-                    return Ok(candidate);
-                }
-                if let Err(e) = input::open(&candidate) {
+                if let Err(e) = input::check_regular(&meta) {
                     return Err(node.error(format!("cannot read '{}': {e}", shown(&candidate))));
                 }
+                if !self.inputs.contains(&candidate) {
+                    self.inputs.push(candidate.clone());
+                }
+                return Ok(candidate);
             }
             if !tried.contains(&candidate) {
                 tried.push(candidate);
