@@ -134,12 +134,14 @@ pub fn sphere_grid(g: u32, s: u32, width: u32, height: u32) -> Scene {
         background: Vec3::splat(0.05),
         mode: RenderMode::Phong,
         exposure: 1.0,
+        ambient: Vec3::ZERO,
+        reflection: crate::material::Reflection::Added,
         lights: vec![Light::Point {
             position: light,
             intensity: Intensity {
                 diffuse: Vec3::splat(light.length_squared()),
                 specular: Vec3::splat(light.length_squared()),
-                falloff_scale: 1.0,
+                falloff: crate::light::Falloff::InverseSquare { scale: 1.0 },
             },
         }],
         primitives,
@@ -860,12 +862,14 @@ pub fn random_scene(n: usize, width: u32, height: u32, backdrop: bool) -> Scene 
         background: Vec3::ZERO,
         mode: RenderMode::Phong,
         exposure: 1.0,
+        ambient: Vec3::ZERO,
+        reflection: crate::material::Reflection::Added,
         lights: vec![Light::Point {
             position: Vec3::new(2.0, 3.0, -3.0),
             intensity: Intensity {
                 diffuse: Vec3::splat(20.0),
                 specular: Vec3::splat(20.0),
-                falloff_scale: 1.0,
+                falloff: crate::light::Falloff::InverseSquare { scale: 1.0 },
             },
         }],
         primitives,

@@ -93,11 +93,20 @@ pub enum ToneMap {
     Srgb,
     /// Reinhard `x / (1 + x)` per channel, then the sRGB transfer curve.
     Reinhard,
+    /// `1 − exp(−x)` per channel, no gamma: the photographic exposure curve, which never clips.
+    /// It is what a CGR camera's `exposure` feeds in the one coursework renderer whose code
+    /// uses it (`docs/scene-format.md`, CGR conventions).
+    Exposure,
 }
 
 impl ToneMap {
     /// All tone maps, in the order they are listed in messages.
-    pub const ALL: [ToneMap; 3] = [ToneMap::Linear, ToneMap::Srgb, ToneMap::Reinhard];
+    pub const ALL: [ToneMap; 4] = [
+        ToneMap::Linear,
+        ToneMap::Srgb,
+        ToneMap::Reinhard,
+        ToneMap::Exposure,
+    ];
 
     /// The lower-case name used by [`FromStr`] and [`Display`](fmt::Display).
     pub fn name(self) -> &'static str {
@@ -105,6 +114,7 @@ impl ToneMap {
             ToneMap::Linear => "linear",
             ToneMap::Srgb => "srgb",
             ToneMap::Reinhard => "reinhard",
+            ToneMap::Exposure => "exposure",
         }
     }
 }
@@ -117,13 +127,13 @@ impl fmt::Display for ToneMap {
 
 /// Error from parsing a [`ToneMap`] name.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown tone map '{0}' (expected one of: linear, srgb, reinhard)")]
+#[error("unknown tone map '{0}' (expected one of: linear, srgb, reinhard, exposure)")]
 pub struct ParseToneMapError(pub String);
 
 impl FromStr for ToneMap {
     type Err = ParseToneMapError;
 
-    /// Parses `linear`, `srgb` or `reinhard` (ASCII case-insensitive, surrounding spaces ignored).
+    /// Parses `linear`, `srgb`, `reinhard` or `exposure` (ASCII case-insensitive, surrounding spaces ignored).
     fn from_str(s: &str) -> Result<ToneMap, ParseToneMapError> {
         let t = s.trim();
         ToneMap::ALL
@@ -152,6 +162,7 @@ fn tonemap_channel(x: f32, map: ToneMap, exposure: f32) -> f32 {
         ToneMap::Linear => x.min(1.0),
         ToneMap::Srgb => srgb_encode(x.min(1.0)),
         ToneMap::Reinhard => srgb_encode(x / (1.0 + x)),
+        ToneMap::Exposure => -(-x).exp_m1(),
     }
     .clamp(0.0, 1.0)
 }
@@ -159,7 +170,8 @@ fn tonemap_channel(x: f32, map: ToneMap, exposure: f32) -> f32 {
 /// Maps one linear radiance value to display \[0, 1\]: first multiplies by `exposure`, then
 /// Linear: clamp(x,0,1) (the coursework's official mapping: value × 255, clamped, no gamma);
 /// Srgb: the sRGB transfer curve (IEC 61966-2-1) of clamp(x,0,1);
-/// Reinhard: x/(1+x) per channel, then the sRGB curve.
+/// Reinhard: x/(1+x) per channel, then the sRGB curve;
+/// Exposure: 1 − exp(−x) per channel, no gamma.
 /// Non-finite or negative input maps to 0 (per channel, after the exposure scaling).
 pub fn tonemap(c: Vec3, map: ToneMap, exposure: f32) -> Vec3 {
     Vec3::new(
@@ -170,8 +182,8 @@ pub fn tonemap(c: Vec3, map: ToneMap, exposure: f32) -> Vec3 {
 }
 
 /// A display value in [0, 1] as a byte. The coursework's linear mapping truncates (`⌊v·255⌋`:
-/// the official render stores the background 0.01 as 2, not 3); the gamma-encoded maps round to
-/// nearest (`⌊v·255 + 0.5⌋`).
+/// the official render stores the background 0.01 as 2, not 3); the other maps round to nearest
+/// (`⌊v·255 + 0.5⌋`).
 fn to_byte(v: f32, map: ToneMap) -> u8 {
     let bias = if map == ToneMap::Linear { 0.0 } else { 0.5 };
     (v * 255.0 + bias).floor().clamp(0.0, 255.0) as u8
@@ -285,6 +297,22 @@ mod tests {
     }
 
     #[test]
+    fn exposure_curve_is_one_minus_exp_and_never_clips() {
+        assert!(close(
+            mono(1.0, ToneMap::Exposure, 1.0),
+            1.0 - (-1.0f32).exp()
+        ));
+        assert!(close(
+            mono(0.25, ToneMap::Exposure, 2.0),
+            1.0 - (-0.5f32).exp()
+        ));
+        // Large values approach 1 but stay ordered: no clipping plateau below 1.
+        assert!(mono(5.0, ToneMap::Exposure, 1.0) < mono(6.0, ToneMap::Exposure, 1.0));
+        assert_eq!(mono(f32::INFINITY, ToneMap::Exposure, 1.0), 0.0);
+        assert_eq!(mono(-1.0, ToneMap::Exposure, 1.0), 0.0);
+    }
+
+    #[test]
     fn to_rgb8_truncates_linear_and_rounds_gamma_maps() {
         let film = Film::from_pixels(
             4,
@@ -315,7 +343,7 @@ mod tests {
         assert_eq!(" Reinhard ".parse::<ToneMap>(), Ok(ToneMap::Reinhard));
         let err = "gamma".parse::<ToneMap>().unwrap_err().to_string();
         assert!(err.contains("gamma"), "{err}");
-        for name in ["linear", "srgb", "reinhard"] {
+        for name in ["linear", "srgb", "reinhard", "exposure"] {
             assert!(err.contains(name), "{err}");
         }
         for map in ToneMap::ALL {

@@ -6,10 +6,13 @@
 //! and shading normal `n` turned towards the viewer (surfaces are two-sided):
 //!
 //! ```text
-//! L = Σ_lights Σ_samples w·V·E(d)·( kd·c·id·max(0, n·l) + ks·specularcolor·is·max(0, n·h)^p )
+//! L = ka·A·c + Σ_lights Σ_samples w·V·E(d)·( kd·c·id·max(0, n·l) + ks·specularcolor·is·max(0, n·h)^p )
 //!   + (kr + kt·F)·L(reflected)  +  kt·(1 − F)·L(refracted)
 //! ```
-//! where `E(d)` is the light's inverse-square fall-off, `w` the sample's share of the light, `V`
+//! where `A` is the scene's ambient light (0 unless the file gives one, or the file is CGR). In
+//! CGR files an opaque mirror blends instead ([`Reflection::Blended`]): its own terms are scaled by
+//! `1 − kr`, so that a `reflectivity` 1 mirror shows only what it reflects.
+//! Above, `E(d)` is the light's fall-off, `w` the sample's share of the light, `V`
 //! the shadow ray's transmittance (opaque blockers give 0, a transmissive one multiplies by its
 //! `kt`), `h = normalize(l + v)`, and `F` the dielectric Fresnel reflectance (1 under total
 //! internal reflection). Reflection and refraction are traced only while the depth is below
@@ -42,6 +45,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::accel::Accel;
 use crate::light::Light;
+use crate::material::Reflection;
 use crate::math::{fresnel_dielectric, reflect, refract, Vec2, Vec3};
 use crate::ray::{Hit, Ray};
 use crate::sampling::{Method, SampleKey};
@@ -325,7 +329,11 @@ impl<'a> Tracer<'a> {
             None => material.diffuse,
         };
 
-        let mut color = Vec3::ZERO;
+        let mut color = if scene.ambient == Vec3::ZERO {
+            Vec3::ZERO
+        } else {
+            material.ka * scene.ambient * base
+        };
         for (li, light) in scene.lights.iter().enumerate() {
             let (count, method) = self.options.light_plan(light);
             // Each sample carries 1/count of the light (the same value `Light::sample` gives for
@@ -375,6 +383,10 @@ impl<'a> Tracer<'a> {
             }
         }
 
+        if scene.reflection == Reflection::Blended && material.kt == 0.0 && material.kr > 0.0 {
+            // The mirror shows what it reflects in place of its own shading.
+            color *= 1.0 - material.kr.min(1.0);
+        }
         if depth >= scene.nbounces.min(self.max_depth) {
             return color;
         }

@@ -6,9 +6,16 @@
 //! { "type": "arealight", "v0": […], "v1": […], "v2": […], "v3": […], "samples": 4,
 //!   "method": "jittered", "is": […], "id": […] }
 //! ```
-//! Fall-off is inverse-square. A light with `is`/`id` (the 2021–23 variant) gives the irradiance
-//! `I / (4π d²)` — the point source of power `I` — which is what the official reference render
-//! shows; a light with `intensity` (2019, CGR) gives `I / d²`. An area light is the parallelogram
+//! Fall-off ([`Falloff`]) is inverse-square in the 2019 and 2021–23 variants. A light with
+//! `is`/`id` (2021–23) gives the irradiance `I / (4π d²)` — the point source of power `I` —
+//! which is what the official reference render shows; a light with `intensity` (2019) gives
+//! `I / d²`. CGR lights do not fall off, unless they give OpenGL-style attenuation
+//! coefficients, `I / (kc + kl·d + kq·d²)`:
+//! ```json
+//! { "type": "pointlight", "position": [0, 1, 0.5], "intensity": [0.75, 0.75, 0.75],
+//!   "kc": 1.0, "kl": 0.22, "kq": 0.2 }
+//! ```
+//! (the evidence for each reading is in `docs/scene-format.md`). An area light is the parallelogram
 //! `v0 + s(v1 − v0) + t(v3 − v0)`, `s, t ∈ [0,1]`, sampled with shadow rays: each of its `n`
 //! samples carries `1/n` of its power, as if it were `n` point lights spread over the quad.
 
@@ -22,8 +29,27 @@ pub struct Intensity {
     pub diffuse: Vec3,
     /// Specular intensity (`is`).
     pub specular: Vec3,
-    /// Multiplies `1/d²`: `1/(4π)` for power-style (`is`/`id`) lights, 1 for `intensity` lights.
-    pub falloff_scale: f32,
+    pub falloff: Falloff,
+}
+
+/// How a light's irradiance falls off with the distance `d` to it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Falloff {
+    /// `scale / d²`: `scale` is `1/(4π)` for power-style (`is`/`id`) lights, 1 for `intensity`
+    /// lights of the 2019 variant.
+    InverseSquare { scale: f32 },
+    /// `1 / (kc + kl·d + kq·d²)`, the attenuation of fixed-function OpenGL lights; `kc = 1`,
+    /// `kl = kq = 0` is no fall-off at all (CGR lights without coefficients).
+    Polynomial { kc: f32, kl: f32, kq: f32 },
+}
+
+impl Falloff {
+    /// No fall-off: the irradiance is the intensity at any distance.
+    pub const NONE: Falloff = Falloff::Polynomial {
+        kc: 1.0,
+        kl: 0.0,
+        kq: 0.0,
+    };
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -99,10 +125,13 @@ impl Light {
 }
 
 impl Intensity {
-    /// Irradiance scale `falloff_scale / d²` at squared distance `d2`.
+    /// The factor of the intensity that reaches squared distance `d2`.
     #[inline]
     pub fn falloff(&self, d2: f32) -> f32 {
-        self.falloff_scale / d2
+        match self.falloff {
+            Falloff::InverseSquare { scale } => scale / d2,
+            Falloff::Polynomial { kc, kl, kq } => 1.0 / (kc + kl * d2.sqrt() + kq * d2),
+        }
     }
 }
 
@@ -119,7 +148,7 @@ mod tests {
             intensity: Intensity {
                 diffuse: Vec3::ONE,
                 specular: Vec3::ONE,
-                falloff_scale: 1.0,
+                falloff: Falloff::InverseSquare { scale: 1.0 },
             },
             samples: 16,
             method: Method::Jittered,
@@ -135,8 +164,31 @@ mod tests {
         let i = Intensity {
             diffuse: Vec3::ONE,
             specular: Vec3::ONE,
-            falloff_scale: 0.25 / std::f32::consts::PI,
+            falloff: Falloff::InverseSquare {
+                scale: 0.25 / std::f32::consts::PI,
+            },
         };
         assert!((i.falloff(4.0) * 4.0 - i.falloff(1.0)).abs() < 1e-7);
+    }
+
+    #[test]
+    fn polynomial_falloff_is_opengl_attenuation_and_none_is_constant() {
+        let at = |falloff, d: f32| {
+            Intensity {
+                diffuse: Vec3::ONE,
+                specular: Vec3::ONE,
+                falloff,
+            }
+            .falloff(d * d)
+        };
+        let f = Falloff::Polynomial {
+            kc: 1.0,
+            kl: 0.22,
+            kq: 0.2,
+        };
+        assert!((at(f, 2.0) - 1.0 / (1.0 + 0.44 + 0.8)).abs() < 1e-6);
+        for d in [0.01, 1.0, 100.0] {
+            assert_eq!(at(Falloff::NONE, d), 1.0);
+        }
     }
 }

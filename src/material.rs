@@ -7,11 +7,15 @@
 //! ```
 //! The CGR spellings `isreflective`/`reflectivity` and `isrefractive`/`refractiveindex` map onto
 //! `kr`, `kt` and `eta` (see `docs/scene-format.md`). A texture replaces the diffuse colour.
+//! `ka` scales the scene's ambient light (CGR files have one; see [`Reflection`] for the other
+//! way CGR files differ).
 
 use crate::math::Vec3;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Material {
+    /// Ambient weight: the surface adds `ka · ambient · base colour`.
+    pub ka: f32,
     /// Diffuse weight.
     pub kd: f32,
     /// Specular weight.
@@ -34,6 +38,7 @@ pub struct Material {
 impl Default for Material {
     fn default() -> Material {
         Material {
+            ka: 1.0,
             kd: 0.8,
             ks: 0.0,
             exponent: 1.0,
@@ -52,4 +57,16 @@ impl Material {
     pub fn is_transmissive(&self) -> bool {
         self.kt > 0.0
     }
+}
+
+/// How a mirror's reflection combines with the light its surface shades itself.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Reflection {
+    /// `local + kr · reflected`: what the official 2021–23 reference render shows (its mirror
+    /// sphere keeps its highlight and diffuse colour).
+    #[default]
+    Added,
+    /// `(1 − kr) · local + kr · reflected`: a `reflectivity` 1 mirror shows only what it
+    /// reflects, as every available CGR student render of the course's test scenes does.
+    Blended,
 }

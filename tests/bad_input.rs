@@ -236,6 +236,26 @@ const CASES: &[(&str, &[&str])] = &[
         &["rendermode", "expected a string"],
     ),
     ("exposure-negative.json", &["camera.exposure", "≥ 0"]),
+    (
+        "material-ka-negative.json",
+        &["scene.shapes[0].material.ka", "ka must be ≥ 0"],
+    ),
+    (
+        "light-attenuation-zero.json",
+        &["scene.lightsources[0]", "zero at every distance"],
+    ),
+    (
+        "light-attenuation-negative.json",
+        &["scene.lightsources[0].kl", "kl must be ≥ 0"],
+    ),
+    (
+        "ambient-negative.json",
+        &["scene.ambientlight", "finite and ≥ 0"],
+    ),
+    (
+        "ambient-light-no-intensity.json",
+        &["scene.lightsources[0]", "missing required key 'intensity'"],
+    ),
 ];
 
 #[test]

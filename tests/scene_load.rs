@@ -3,8 +3,10 @@
 mod common;
 
 use common::*;
+use raytracer::film::ToneMap;
 use raytracer::geometry::{MeshUv, Shape};
-use raytracer::light::Light;
+use raytracer::light::{Falloff, Light};
+use raytracer::material::Reflection;
 use raytracer::math::{Vec2, Vec3};
 use raytracer::scene::{load, LoadOptions, RenderMode, Variant};
 
@@ -103,11 +105,14 @@ fn light_spellings_and_falloff() {
         (intensity.specular, intensity.diffuse),
         (Vec3::new(1.0, 2.0, 3.0), Vec3::new(4.0, 5.0, 6.0))
     );
-    assert!((intensity.falloff_scale - 1.0 / four_pi).abs() < 1e-7);
+    let Falloff::InverseSquare { scale } = intensity.falloff else {
+        panic!("{:?}", intensity.falloff)
+    };
+    assert!((scale - 1.0 / four_pi).abs() < 1e-7);
     let Light::Point { intensity, .. } = &s.lights[1] else {
         panic!()
     };
-    assert_eq!(intensity.falloff_scale, 1.0);
+    assert_eq!(intensity.falloff, Falloff::InverseSquare { scale: 1.0 });
     // Corners in "Z order" (v3 opposite v0) become the same parallelogram; jittered samples is
     // the grid side.
     let Light::Quad {
@@ -331,4 +336,58 @@ fn bundled_scenes_load_cleanly() {
         n += 1;
     }
     assert!(n >= 16, "{n} scenes");
+}
+
+#[test]
+fn cgr_lights_do_not_fall_off_and_the_scene_has_an_ambient_light() {
+    let cgr = |scene: &str| {
+        load_json(&format!(
+            r#"{{ "rendermode": "phong", "camera": {{ "width": 4, "height": 4, "fov": 30,
+                 "position": [0, 0, 0], "lookAt": [0, 0, -1], "upVector": [0, 1, 0], "exposure": 0.1 }},
+                 "scene": {scene} }}"#
+        ))
+    };
+    let s = cgr(r#"{ "lightsources": [
+        { "type": "pointlight", "position": [0, 1, 0], "intensity": [0.75, 0.75, 0.75] },
+        { "type": "pointlight", "position": [0, 1, 0], "intensity": [1, 1, 1], "kc": 1, "kl": 0.22, "kq": 0.2 } ],
+        "shapes": [ { "type": "sphere", "center": [0, 0, -3], "radius": 1, "material": { "ka": 0.5 } } ] }"#);
+    assert_eq!(s.lights[0].intensity().falloff, Falloff::NONE);
+    assert_eq!(
+        s.lights[1].intensity().falloff,
+        Falloff::Polynomial {
+            kc: 1.0,
+            kl: 0.22,
+            kq: 0.2
+        }
+    );
+    assert_eq!(s.ambient, Vec3::splat(raytracer::scene::load::CGR_AMBIENT));
+    assert_eq!(s.materials[0].ka, 0.5);
+    assert_eq!(s.reflection, Reflection::Blended);
+    // The exposure is kept for the `exposure` tone map only.
+    assert_eq!(s.exposure, 0.1);
+    assert_eq!(s.display_exposure(ToneMap::Linear), 1.0);
+    assert_eq!(s.display_exposure(ToneMap::Exposure), 0.1);
+
+    // A file's own ambient light wins: a scene key, or lights of type `ambient` (summed).
+    let s = cgr(r#"{ "ambientlight": [0.5, 0.4, 0.3] }"#);
+    assert_eq!(s.ambient, Vec3::new(0.5, 0.4, 0.3));
+    let s = cgr(
+        r#"{ "lightsources": [ { "type": "ambient", "intensity": 0.1 },
+                                       { "type": "ambient", "intensity": [0.1, 0.2, 0.3] } ] }"#,
+    );
+    assert!((s.ambient - Vec3::new(0.2, 0.3, 0.4)).abs().max_element() < 1e-6);
+
+    // 2021–23 files keep inverse-square lights, no ambient light and added mirrors, and their
+    // exposure scales radiance.
+    let s = load_json(&format!(
+        r#"{{ {CAM_2021}, "scene": {{ "lightsources": [
+            {{ "type": "pointlight", "position": [0, 0, 1], "intensity": [1, 1, 1] }} ] }} }}"#
+    ));
+    assert_eq!(
+        s.lights[0].intensity().falloff,
+        Falloff::InverseSquare { scale: 1.0 }
+    );
+    assert_eq!(s.ambient, Vec3::ZERO);
+    assert_eq!(s.reflection, Reflection::Added);
+    assert_eq!(s.display_exposure(ToneMap::Linear), s.exposure);
 }

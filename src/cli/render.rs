@@ -187,7 +187,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
     if out.cancelled || interrupt.is_set() {
         return Err(Failure::Interrupted(NOT_WRITTEN));
     }
-    let exposure = scene.exposure * cli.exposure;
+    let exposure = scene.display_exposure(cli.tonemap) * cli.exposure;
     let bytes = encode_image(&cli.output, &out.film, cli.tonemap, exposure)
         .map_err(|e| Failure::Input(e.to_string()))?;
     interrupt.commit(pending, &bytes)?;

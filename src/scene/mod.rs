@@ -12,9 +12,10 @@ pub use error::{SceneError, Warning};
 pub use load::{load, load_str, LoadOptions};
 
 use crate::camera::Camera;
+use crate::film::ToneMap;
 use crate::geometry::{Mesh, Primitive};
 use crate::light::Light;
-use crate::material::Material;
+use crate::material::{Material, Reflection};
 use crate::math::Vec3;
 use crate::texture::Texture;
 
@@ -46,8 +47,14 @@ pub struct Scene {
     pub nbounces: u32,
     pub background: Vec3,
     pub mode: RenderMode,
-    /// Radiance scale applied before tone mapping.
+    /// The camera's `exposure` (1 when the file gives none). In the 2019 and 2021–23 variants
+    /// it scales radiance before any tone map; in CGR files it only feeds the `exposure` tone
+    /// map (see [`Scene::display_exposure`]).
     pub exposure: f32,
+    /// Ambient light: every surface adds `ka · ambient · base colour`.
+    pub ambient: Vec3,
+    /// How mirrors combine reflection with their own shading.
+    pub reflection: Reflection,
     pub lights: Vec<Light>,
     pub primitives: Vec<Primitive>,
     pub materials: Vec<Material>,
@@ -60,4 +67,17 @@ pub struct Scene {
     /// The files it was read from: the scene file, then each texture and mesh file (outputs
     /// must never be one of them).
     pub inputs: Vec<std::path::PathBuf>,
+}
+
+impl Scene {
+    /// The scale applied to radiance before the tone map `map`: the file's exposure, except in
+    /// CGR files, whose `exposure` is not a radiance scale (the course's test scenes, rendered
+    /// by students, show their background and lights unscaled) and feeds only
+    /// [`ToneMap::Exposure`].
+    pub fn display_exposure(&self, map: ToneMap) -> f32 {
+        match (self.variant, map) {
+            (Variant::Cgr, m) if m != ToneMap::Exposure => 1.0,
+            _ => self.exposure,
+        }
+    }
 }
