@@ -61,10 +61,12 @@ struct Cli {
     /// Override the image height.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     height: Option<u32>,
-    /// Tone map for 8-bit output: linear (the coursework's: ×255, clamp), srgb, reinhard.
+    /// Tone map for 8-bit output: linear (the coursework's: ×255, clamp), srgb, reinhard, or
+    /// exposure (1 − exp(−x·exposure); the only one a CGR file's camera exposure feeds).
     #[arg(long, default_value = "linear")]
     tonemap: ToneMap,
-    /// Multiplies the scene's exposure (a finite number ≥ 0, as in the scene file).
+    /// Multiplies the scene's exposure (a finite number ≥ 0, as in the scene file); for CGR files,
+    /// a radiance scale of its own.
     #[arg(long, default_value_t = 1.0, value_parser = values::non_negative_f32)]
     exposure: f32,
     /// Worker threads (default: all cores).
