@@ -294,7 +294,9 @@ fn sample_triangles(
     };
     let [p0, p1, p2] = triangles[i];
     let s = ux.sqrt();
-    let position = (1.0 - s) * p0 + (s * (1.0 - u.y)) * p1 + (s * u.y) * p2;
+    // From a corner along the edges, so that a point of an axis-aligned triangle keeps the
+    // plane's coordinate exactly.
+    let position = p0 + (s * (1.0 - u.y)) * (p1 - p0) + (s * u.y) * (p2 - p0);
     let normal = (p1 - p0).cross(p2 - p0).normalize_or_zero();
     flat_sample(from, position, normal, total)
 }
