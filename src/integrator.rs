@@ -9,9 +9,9 @@
 //! L = Σ_lights Σ_samples w·V·E(d)·( kd·c·id·max(0, n·l) + ks·specularcolor·is·max(0, n·h)^p )
 //!   + (kr + kt·F)·L(reflected)  +  kt·(1 − F)·L(refracted)
 //! ```
-//! where `E(d)` is the light's inverse-square fall-off, `w` the sample's share of the light, `V`
-//! the shadow ray's transmittance (opaque blockers give 0, a transmissive one multiplies by its
-//! `kt`), `h = normalize(l + v)`, and `F` the dielectric Fresnel reflectance (1 under total
+//! where `E(d)` is the light's inverse-square fall-off, `w` the sample's share of the light
+//! (`1/n` of [`crate::light::LightSample::weight`]), `V` the shadow ray's transmittance (opaque
+//! blockers give 0, a transmissive one multiplies by its `kt`; a light's own shape passes), `h = normalize(l + v)`, and `F` the dielectric Fresnel reflectance (1 under total
 //! internal reflection). Reflection and refraction are traced only while the depth is below
 //! `nbounces`.
 //!

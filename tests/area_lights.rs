@@ -215,3 +215,67 @@ fn sphere_and_shape_lights_render_alike_on_any_thread_count() {
     assert!(one.pixels == two.pixels);
     assert!(one.pixels.iter().any(|p| p.x > 0.0));
 }
+
+/// The other forms: a light's own quad `shape` is a quad light on its corners; a `shapeid` naming
+/// a skipped shape skips the light (warning); of two shapes with the id the first is used
+/// (warning); a light with only a position is a point light there (warning that says so).
+#[test]
+fn shape_quads_skipped_and_duplicate_ids_and_bare_positions() {
+    let scene = load_json(&floor_scene(
+        r#"{ "type": "arealight", "intensity": 100, "position": [0, -10, 0],
+             "shape": { "type": "plane", "points": [[-3, -8, -3], [-3, -8, 3], [3, -8, 3], [3, -8, -3]] } },
+           { "type": "arealight", "shapeid": "gone", "intensity": 1 },
+           { "type": "arealight", "shapeid": "twice", "intensity": 1 },
+           { "type": "arealight", "position": [0, 1, 0.5], "intensity": 1 }"#,
+        r#", { "id": "gone", "type": "sphereee", "center": [0, 0, 5], "radius": 1 },
+             { "id": "twice", "type": "sphere", "center": [0, 0, 5], "radius": 1 },
+             { "id": "twice", "type": "sphere", "center": [0, 0, 9], "radius": 2 }"#,
+    ));
+    assert_eq!(scene.lights.len(), 3, "{:?}", scene.lights);
+    let Light::Quad {
+        origin,
+        edge_u,
+        edge_v,
+        ..
+    } = &scene.lights[0]
+    else {
+        panic!("{:?}", scene.lights[0]);
+    };
+    assert_eq!(*origin, Vec3::new(-3.0, -8.0, -3.0));
+    assert_eq!(edge_u.cross(*edge_v).length(), 36.0);
+    let Light::Sphere { center, .. } = &scene.lights[1] else {
+        panic!("{:?}", scene.lights[1]);
+    };
+    assert_eq!(*center, Vec3::new(0.0, 0.0, 5.0));
+    let Light::Point { position, .. } = &scene.lights[2] else {
+        panic!("{:?}", scene.lights[2]);
+    };
+    assert_eq!(*position, Vec3::new(0.0, 1.0, 0.5));
+    let messages: Vec<String> = scene.warnings.iter().map(|w| w.to_string()).collect();
+    let has = |path: &str, text: &str| {
+        messages
+            .iter()
+            .any(|m| m.contains(path) && m.contains(text))
+    };
+    assert!(
+        has(
+            "scene.lightsources[1].shapeid",
+            "'gone' (scene.shapes[1]) was skipped"
+        ),
+        "{messages:?}"
+    );
+    assert!(
+        has(
+            "scene.lightsources[2].shapeid",
+            "several shapes have the id 'twice'"
+        ),
+        "{messages:?}"
+    );
+    assert!(
+        has(
+            "scene.lightsources[3]",
+            "given only by a position (no corners, edges, 'shape' or 'shapeid'); treated as a point light at [0, 1, 0.5]"
+        ),
+        "{messages:?}"
+    );
+}
