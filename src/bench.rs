@@ -288,6 +288,23 @@ pub fn with_lights(scene: &Scene, variant: LightVariant) -> Scene {
                     method: Method::Jittered,
                 }
             }
+            (LightVariant::Point, Light::Sphere { .. } | Light::Triangles { .. }) => Light::Point {
+                position: l.center(),
+                intensity: *l.intensity(),
+            },
+            (LightVariant::Area, Light::Sphere { .. } | Light::Triangles { .. }) => {
+                let mut l = l.clone();
+                if let Light::Sphere {
+                    samples, method, ..
+                }
+                | Light::Triangles {
+                    samples, method, ..
+                } = &mut l
+                {
+                    (*samples, *method) = (AREA_SAMPLES, Method::Jittered);
+                }
+                l
+            }
         })
         .collect();
     Scene {

@@ -12,9 +12,10 @@
 //! where `A` is the scene's ambient light (0 unless the file gives one, or the file is CGR). In
 //! CGR files an opaque mirror blends instead ([`Reflection::Blended`]): its own terms are scaled by
 //! `1 − kr`, so that a `reflectivity` 1 mirror shows only what it reflects.
-//! Above, `E(d)` is the light's fall-off, `w` the sample's share of the light, `V`
-//! the shadow ray's transmittance (opaque blockers give 0, a transmissive one multiplies by its
-//! `kt`), `h = normalize(l + v)`, and `F` the dielectric Fresnel reflectance (1 under total
+//! Above, `E(d)` is the light's fall-off, `w` the sample's share of the light (`1/n` of
+//! [`crate::light::LightSample::weight`]), `V` the shadow ray's transmittance (opaque blockers
+//! give 0, a transmissive one multiplies by its `kt`; a light's own shape passes),
+//! `h = normalize(l + v)`, and `F` the dielectric Fresnel reflectance (1 under total
 //! internal reflection). Reflection and refraction are traced only while the depth is below
 //! `nbounces`.
 //!
@@ -41,6 +42,7 @@
 //!   is not traced, as POV-Ray's `adc_bailout` does; at 1/255 a branch then cannot change an 8-bit
 //!   pixel unless its radiance is above 1.
 
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::accel::Accel;
@@ -129,7 +131,7 @@ impl TraceOptions {
     pub fn light_plan(&self, light: &Light) -> (u32, Method) {
         match light {
             Light::Point { .. } => (1, light.method()),
-            Light::Quad { .. } => (
+            Light::Quad { .. } | Light::Sphere { .. } | Light::Triangles { .. } => (
                 self.light_samples.unwrap_or(light.sample_count()).max(1),
                 self.light_method.unwrap_or(light.method()),
             ),
@@ -336,13 +338,13 @@ impl<'a> Tracer<'a> {
         };
         for (li, light) in scene.lights.iter().enumerate() {
             let (count, method) = self.options.light_plan(light);
-            // Each sample carries 1/count of the light (the same value `Light::sample` gives for
-            // the scene's own count).
+            // Each sample carries 1/count of what one sample alone would (its `weight`).
             let share = 1.0 / count as f32;
             let light_key = key.stream(li as u64);
             let intensity = light.intensity();
+            let surface = light.surface();
             let known = if self.options.adaptive_lights && count > ADAPTIVE_PROBES.len() as u32 {
-                self.uniform_visibility(&hit, n, light)
+                self.uniform_visibility(&hit, n, light, &surface)
             } else {
                 None
             };
@@ -358,7 +360,7 @@ impl<'a> Tracer<'a> {
                 } else {
                     light_key.set_point(method, 0, s, count)
                 };
-                let sample = light.sample(u);
+                let sample = light.sample(hit.point, u);
                 let to_light = sample.position - hit.point;
                 if to_light.dot(n) <= 0.0 {
                     continue; // the light is behind the side we see: no shadow ray needed
@@ -366,13 +368,13 @@ impl<'a> Tracer<'a> {
                 let d2 = to_light.length_squared();
                 let visibility = match known {
                     Some(v) => v,
-                    None => self.transmittance(&hit, sample.position),
+                    None => self.transmittance(&hit, sample.position, &surface),
                 };
                 if visibility == 0.0 {
                     continue;
                 }
                 let l = to_light / d2.sqrt();
-                let e = share * intensity.falloff(d2) * visibility;
+                let e = share * sample.weight * intensity.falloff(sample.falloff_d2) * visibility;
                 let n_dot_l = ns.dot(l).max(0.0);
                 color += material.kd * base * intensity.diffuse * (n_dot_l * e);
                 if material.ks > 0.0 {
@@ -429,14 +431,20 @@ impl<'a> Tracer<'a> {
 
     /// Adaptive area-light sampling: the transmittance the light's probe points all see from
     /// `hit`, or `None` when they disagree or a probe point is behind the surface.
-    fn uniform_visibility(&mut self, hit: &Hit, n: Vec3, light: &Light) -> Option<f32> {
+    fn uniform_visibility(
+        &mut self,
+        hit: &Hit,
+        n: Vec3,
+        light: &Light,
+        surface: &Range<u32>,
+    ) -> Option<f32> {
         let mut seen = None;
         for u in ADAPTIVE_PROBES {
-            let p = light.sample(u).position;
+            let p = light.sample(hit.point, u).position;
             if (p - hit.point).dot(n) <= 0.0 {
                 return None;
             }
-            let v = self.transmittance(hit, p);
+            let v = self.transmittance(hit, p, surface);
             match seen {
                 None => seen = Some(v),
                 Some(s) if s != v => return None,
@@ -447,14 +455,17 @@ impl<'a> Tracer<'a> {
     }
 
     /// Fraction of light reaching `hit` from `target`: 0 behind an opaque surface, multiplied by
-    /// `kt` for every transmissive surface crossed.
-    fn transmittance(&mut self, hit: &Hit, target: Vec3) -> f32 {
+    /// `kt` for every transmissive surface crossed. The primitives in `surface` (the light's own,
+    /// for a shape that emits) are passed through: a light is never its own shadow.
+    fn transmittance(&mut self, hit: &Hit, target: Vec3, surface: &Range<u32>) -> f32 {
         let scene = self.scene;
         self.counts.shadow += 1;
         let (ray, dist) = hit.spawn_to(target);
         let t_max = dist * (1.0 - LIGHT_CLEARANCE);
         if !scene.has_transmissive {
-            let blocked = self.accel.any(&scene.primitives, &ray, t_max, |_| true);
+            let blocked = self
+                .accel
+                .any(&scene.primitives, &ray, t_max, |p| !surface.contains(&p));
             return if blocked { 0.0 } else { 1.0 };
         }
         let mut ray = ray;
@@ -466,10 +477,12 @@ impl<'a> Tracer<'a> {
             };
             let prim = &scene.primitives[p as usize];
             let material = &scene.materials[prim.material as usize];
-            if !material.is_transmissive() {
-                return 0.0;
+            if !surface.contains(&p) {
+                if !material.is_transmissive() {
+                    return 0.0;
+                }
+                through *= material.kt;
             }
-            through *= material.kt;
             let h = prim.hit(&ray, c, p, &scene.meshes);
             let (next, d) = h.spawn_to(target);
             ray = next;

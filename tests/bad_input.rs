@@ -215,6 +215,57 @@ const CASES: &[(&str, &[&str])] = &[
         &["scene.lightsources[0]", "needs corners"],
     ),
     (
+        "arealight-sphere-radius-zero.json",
+        &["scene.lightsources[0].shape.radius", "> 0, found 0"],
+    ),
+    (
+        "arealight-sphere-radius-negative.json",
+        &["scene.lightsources[0].shape.radius", "> 0, found -0.5"],
+    ),
+    (
+        "arealight-sphere-no-center.json",
+        &[
+            "scene.lightsources[0].shape:",
+            "missing required key 'center'",
+        ],
+    ),
+    (
+        "arealight-shape-box.json",
+        &[
+            "scene.lightsources[0].shape.type",
+            "a sphere, a triangle or a quad",
+            "'box'",
+        ],
+    ),
+    (
+        "arealight-shapeid-unknown.json",
+        &[
+            "scene.lightsources[0].shapeid",
+            "no shape has the id 'lamp'",
+            "'ball', 'ceiling'",
+        ],
+    ),
+    (
+        "arealight-shapeid-mesh.json",
+        &[
+            "scene.lightsources[0].shapeid",
+            "'lamp' (scene.shapes[1]) is a 'trimesh'",
+            "only a sphere, a triangle or a quad",
+        ],
+    ),
+    (
+        "arealight-shapeid-cylinder.json",
+        &[
+            "scene.lightsources[0].shapeid",
+            "is a 'cylinder'",
+            "only a sphere, a triangle or a quad",
+        ],
+    ),
+    (
+        "arealight-shapeid-not-string.json",
+        &["scene.lightsources[0].shapeid", "expected a string"],
+    ),
+    (
         "arealight-samples-absurd.json",
         &[
             "scene.lightsources[0].samples",

@@ -17,6 +17,7 @@ use std::path::{Component, Path, PathBuf};
 
 use super::error::{SceneError, Warning};
 use super::json::{NameIndex, Node, Source};
+use super::lights::{self, Emitters};
 use super::mesh_file::{read_mesh_with, MeshData, MeshLimits};
 use super::{RenderMode, Scene, Variant};
 use crate::camera::{Camera, Handedness, Lens};
@@ -147,6 +148,7 @@ pub fn load_str(text: &str, path: &Path, options: &LoadOptions) -> Result<Scene,
         lights: Vec::new(),
         ambient: None,
         variant: Variant::V2021,
+        emitters: Emitters::default(),
         triangles: 0,
         inputs: Vec::new(),
     };
@@ -211,6 +213,8 @@ struct Loader<'o> {
     /// Ambient light given by the file (a scene key or a light of type `ambient`).
     ambient: Option<Vec3>,
     variant: Variant,
+    /// Area lights whose surface is a shape of the scene, resolved after the shapes are read.
+    emitters: Emitters,
     triangles: usize,
     inputs: Vec<PathBuf>,
 }
@@ -222,7 +226,10 @@ pub const SPHERE_POLE: Vec3 = Vec3::Y;
 /// See [`SPHERE_POLE`].
 pub const SPHERE_SEAM: Vec3 = Vec3::NEG_X;
 
-fn required<'a, 't>(node: &Node<'a, 't>, keys: &[&str]) -> Result<Node<'a, 't>, SceneError> {
+pub(super) fn required<'a, 't>(
+    node: &Node<'a, 't>,
+    keys: &[&str],
+) -> Result<Node<'a, 't>, SceneError> {
     node.get_any(keys).ok_or_else(|| {
         let spelled = if keys.len() == 1 {
             format!("'{}'", keys[0])
@@ -234,7 +241,7 @@ fn required<'a, 't>(node: &Node<'a, 't>, keys: &[&str]) -> Result<Node<'a, 't>, 
 }
 
 /// The required number `key`, which must be > 0.
-fn positive(node: &Node, key: &str) -> Result<f32, SceneError> {
+pub(super) fn positive(node: &Node, key: &str) -> Result<f32, SceneError> {
     let n = required(node, &[key])?;
     let v = n.f32()?;
     if v <= 0.0 {
@@ -379,9 +386,16 @@ impl<'o> Loader<'o> {
         }
         if let Some(shapes) = scene_node.get_any(&["shapes", "objects", "geometry"]) {
             for s in shapes.elements()? {
+                let first = self.primitives.len();
                 self.shape(&s, mode, &library)?;
+                self.emitters.shape(&s, first..self.primitives.len());
             }
         }
+        std::mem::take(&mut self.emitters).resolve(
+            &mut self.lights,
+            &self.primitives,
+            &mut self.warnings,
+        )?;
         let has_transmissive = self.materials.iter().any(Material::is_transmissive);
         let (ambient, reflection) = match variant {
             Variant::Cgr => (
@@ -740,17 +754,15 @@ impl<'o> Loader<'o> {
         }))
     }
 
+    /// An area light: a quad from its corners or edges, or the sphere, quad or triangle of its
+    /// `shape`, or the scene shape its `shapeid` names (resolved after the shapes are read).
     fn area_light(&mut self, l: &Node, intensity: Intensity) -> Result<(), SceneError> {
         let corner = |k: &str| l.get(k).map(|n| n.vec3()).transpose();
         let (origin, edge_u, edge_v) = if let (Some(a), Some(b), Some(c)) =
             (corner("v0")?, corner("v1")?, corner("v2")?)
         {
             match corner("v3")? {
-                Some(d) => {
-                    let p = [a, b, c, d];
-                    let [i0, i1, _, i3] = cycle_order(p);
-                    (p[i0], p[i1] - p[i0], p[i3] - p[i0])
-                }
+                Some(d) => quad_edges([a, b, c, d]),
                 None => right_angle_corner(a, b, c),
             }
         } else if let (Some(a), Some(b), Some(c)) = (corner("c1")?, corner("c2")?, corner("c3")?) {
@@ -785,17 +797,26 @@ impl<'o> Loader<'o> {
             let eu = Vec3::X * sw;
             let ev = Vec3::Z * sh;
             (p - 0.5 * eu - 0.5 * ev, eu, ev)
-        } else if let Some(p) = match corner("position")? {
-            Some(p) => Some(p),
-            None => l
-                .get("shape")
-                .and_then(|sh| sh.get_any(&["center", "centre", "position"]))
-                .map(|c| c.vec3())
-                .transpose()?,
-        } {
+        } else if let Some(shape) = l.get("shape") {
+            return self.shaped_area_light(l, &shape, intensity);
+        } else if let Some(id) = l.get("shapeid") {
+            let (samples, method) = self.area_sampling(l)?;
+            self.emitters
+                .want(self.lights.len(), &id, intensity, samples, method)?;
+            // A placeholder, replaced once the shapes are read.
+            self.lights.push(Light::Point {
+                position: Vec3::ZERO,
+                intensity,
+            });
+            return Ok(());
+        } else if let Some(p) = corner("position")? {
             self.warn(
                 l,
-                "an area light without corners or edges; treated as a point light at its centre",
+                format!(
+                    "an area light given only by a position (no corners, edges, 'shape' or \
+                     'shapeid'); treated as a point light at [{}, {}, {}]",
+                    p.x, p.y, p.z
+                ),
             );
             self.lights.push(Light::Point {
                 position: p,
@@ -804,9 +825,93 @@ impl<'o> Loader<'o> {
             return Ok(());
         } else {
             return Err(l.error(
-                "an area light needs corners 'v0'..'v3' (or 'p'+'e0'+'e1', or 'position'+'u'+'v')",
+                "an area light needs corners 'v0'..'v3' (or 'p'+'e0'+'e1', 'position'+'u'+'v', \
+                 a 'shape' or a 'shapeid')",
             ));
         };
+        let (samples, method) = self.area_sampling(l)?;
+        self.lights.push(Light::Quad {
+            origin,
+            edge_u,
+            edge_v,
+            intensity,
+            samples,
+            method,
+        });
+        Ok(())
+    }
+
+    /// An area light given by its own `shape`: a sphere, or a quad or triangle under the corner
+    /// spellings of shapes.
+    fn shaped_area_light(
+        &mut self,
+        l: &Node,
+        shape: &Node,
+        intensity: Intensity,
+    ) -> Result<(), SceneError> {
+        if !shape.is_object() {
+            return Err(shape.error(format!(
+                "a light's shape is an object, found {}",
+                shape.kind()
+            )));
+        }
+        let type_node = required(shape, &["type"])?;
+        let kind = type_node.str()?.to_ascii_lowercase();
+        let light = if kind == "sphere" || kind == "uvsphere" {
+            let (center, radius) = lights::sphere(shape)?;
+            let (samples, method) = self.area_sampling(l)?;
+            Light::Sphere {
+                center,
+                radius,
+                intensity,
+                samples,
+                method,
+                surface: 0..0,
+            }
+        } else if let Some(n) = lights::flat_corners(&kind) {
+            let p = self.corners(shape, n)?;
+            let (samples, method) = self.area_sampling(l)?;
+            if n == 4 {
+                let (origin, edge_u, edge_v) = quad_edges([p[0], p[1], p[2], p[3]]);
+                if edge_u.cross(edge_v) == Vec3::ZERO {
+                    return Err(shape.error("the quad has zero area (its corners are collinear)"));
+                }
+                Light::Quad {
+                    origin,
+                    edge_u,
+                    edge_v,
+                    intensity,
+                    samples,
+                    method,
+                }
+            } else {
+                let triangles = vec![[p[0], p[1], p[2]]];
+                if (p[1] - p[0]).cross(p[2] - p[0]) == Vec3::ZERO {
+                    return Err(
+                        shape.error("the triangle has zero area (its corners are collinear)")
+                    );
+                }
+                Light::Triangles {
+                    cumulative_area: crate::light::cumulative_areas(&triangles),
+                    triangles,
+                    intensity,
+                    samples,
+                    method,
+                    surface: 0..0,
+                }
+            }
+        } else {
+            return Err(type_node.error(format!(
+                "an area light's shape must be a sphere, a triangle or a quad ('plane'), found '{kind}'"
+            )));
+        };
+        self.lights.push(light);
+        Ok(())
+    }
+
+    /// An area light's shadow rays per shading point and their placement: `method` (default
+    /// jittered) and `samples` (default 4; the grid's side for jittered, the total otherwise).
+    fn area_sampling(&mut self, l: &Node) -> Result<(u32, Method), SceneError> {
         let method = match l.get_any(&["method", "sampler", "sampling"]) {
             Some(n) => match n.str()?.to_ascii_lowercase().as_str() {
                 "random" | "uniform" => Method::Random,
@@ -839,15 +944,7 @@ impl<'o> Loader<'o> {
                 self.options.max_light_samples
             )));
         }
-        self.lights.push(Light::Quad {
-            origin,
-            edge_u,
-            edge_v,
-            intensity,
-            samples: total as u32,
-            method,
-        });
-        Ok(())
+        Ok((total as u32, method))
     }
 
     fn shape(&mut self, s: &Node, mode: RenderMode, library: &Library) -> Result<(), SceneError> {
@@ -1515,6 +1612,13 @@ fn is_cgr(root: &Node, camera: &Node) -> bool {
 /// The order that lists four corners as a cycle. They already are when the diagonals `p0p2` and
 /// `p1p3` share a midpoint; corners written in "Z order" (`p3` opposite `p0`, as some files do)
 /// are reordered to `p0, p1, p3, p2`.
+/// An area light's parallelogram from four corners: the corners in cycle order c0..c3, then the
+/// origin c0 and the edges c1 − c0 and c3 − c0 (the corner opposite c0 is not used).
+fn quad_edges(p: [Vec3; 4]) -> (Vec3, Vec3, Vec3) {
+    let [i0, i1, _, i3] = cycle_order(p);
+    (p[i0], p[i1] - p[i0], p[i3] - p[i0])
+}
+
 fn cycle_order(p: [Vec3; 4]) -> [usize; 4] {
     let cycle = (p[0] + p[2] - p[1] - p[3]).length_squared();
     let z_order = (p[0] + p[3] - p[1] - p[2]).length_squared();

@@ -5,6 +5,7 @@
 
 pub mod error;
 pub mod json;
+mod lights;
 pub mod load;
 pub mod mesh_file;
 

@@ -1,0 +1,258 @@
+//! Area lights whose surface is a sphere or a shape of the scene: reading the light's `shape`,
+//! and tying a `shapeid` to the shape with that `id` once the shapes are read.
+//!
+//! ```json
+//! { "type": "arealight", "intensity": [20, 20, 20], "samplesize": 10,
+//!   "shape": { "type": "sphere", "center": [-2, 2, 2], "radius": 1 } }
+//! { "type": "arealight", "shape": { "type": "plane", "points": [[-3, -8, -3], [-3, -8, 3], [3, -8, 3], [3, -8, -3]] }, … }
+//! { "type": "arealight", "shapeid": "myarealightshape", "is": [100, 100, 100], "id": [100, 100, 100] }
+//! …
+//! "shapes": [ { "id": "myarealightshape", "type": "plane", "v0": […], "v1": […], "v2": […], "v3": […],
+//!               "material": { … } } ]
+//! ```
+//! A light's `shape` is geometry of the light alone: it is not a shape of the scene, so camera
+//! rays do not see it (like a quad light). A `shapeid` names a shape of the scene's `shapes` by its
+//! `id`: that shape stays a shape (camera rays see its material, and it shadows other lights), and
+//! it is also the light's surface, which its own shadow rays pass through. Shapes are read after
+//! lights, so a `shapeid` is only noted when its light is read ([`Emitters::want`]) and resolved
+//! once every shape is known ([`Emitters::resolve`]).
+//!
+//! Only flat shapes (`triangle`, `plane` and the other quad spellings) and spheres can emit: the
+//! samples of a flat shape or of a sphere's visible cap see the shading point directly, but a
+//! mesh, a box or a cylinder would shine through itself, since its own primitives never block its
+//! shadow rays.
+
+use std::ops::Range;
+
+use super::error::{Location, SceneError, Warning};
+use super::json::Node;
+use super::load::{positive, required};
+use crate::geometry::{Primitive, Shape};
+use crate::light::{cumulative_areas, Intensity, Light};
+use crate::math::Vec3;
+use crate::sampling::Method;
+
+/// `type` values of a shape that can be an area light's surface, by the light they make.
+const SPHERE_TYPES: &[&str] = &["sphere", "uvsphere"];
+const FLAT_TYPES: &[&str] = &[
+    "triangle",
+    "plane",
+    "planarquad",
+    "planerquad",
+    "quad",
+    "rectangle",
+];
+
+/// Most shape ids listed in the message of a `shapeid` that names none.
+const LISTED_IDS: usize = 20;
+
+/// The sphere of a light's `"shape": {"type": "sphere", "center": …, "radius": …}`: the centre
+/// (`center`, `centre` or `position`) and a radius > 0.
+pub(super) fn sphere(shape: &Node) -> Result<(Vec3, f32), SceneError> {
+    let center = required(shape, &["center", "centre", "position"])?.vec3()?;
+    let radius = positive(shape, "radius")?;
+    Ok((center, radius))
+}
+
+/// Whether a light's `shape` of this `type` (lower case) is a quad or a triangle.
+pub(super) fn flat_corners(kind: &str) -> Option<usize> {
+    match kind {
+        "triangle" => Some(3),
+        k if FLAT_TYPES.contains(&k) => Some(4),
+        _ => None,
+    }
+}
+
+/// A light waiting for the shape its `shapeid` names.
+struct Wanted {
+    /// Index of its placeholder in the loader's lights.
+    light: usize,
+    id: String,
+    /// The `shapeid` value.
+    at: Location,
+    intensity: Intensity,
+    samples: u32,
+    method: Method,
+}
+
+/// A shape with a string `id`.
+struct Named {
+    id: String,
+    /// Its `type`, lower case.
+    kind: String,
+    at: Location,
+    primitives: Range<u32>,
+}
+
+/// The `shapeid`s of the lights read so far and the ids of the shapes.
+#[derive(Default)]
+pub(super) struct Emitters {
+    wanted: Vec<Wanted>,
+    shapes: Vec<Named>,
+}
+
+impl Emitters {
+    /// Notes that the light at index `light` (a placeholder for now) is the shape named by the
+    /// string `shapeid`.
+    pub(super) fn want(
+        &mut self,
+        light: usize,
+        shapeid: &Node,
+        intensity: Intensity,
+        samples: u32,
+        method: Method,
+    ) -> Result<(), SceneError> {
+        self.wanted.push(Wanted {
+            light,
+            id: shapeid.str()?.to_string(),
+            at: shapeid.location(),
+            intensity,
+            samples,
+            method,
+        });
+        Ok(())
+    }
+
+    /// Records the shape `s`, whose primitives are `primitives`, if it has a string `id`.
+    pub(super) fn shape(&mut self, s: &Node, primitives: Range<usize>) {
+        let Some(id) = s.get("id").and_then(|n| n.str().ok().map(str::to_string)) else {
+            return;
+        };
+        let kind = s
+            .get("type")
+            .and_then(|n| n.str().ok().map(str::to_ascii_lowercase))
+            .unwrap_or_default();
+        self.shapes.push(Named {
+            id,
+            kind,
+            at: s.location(),
+            primitives: primitives.start as u32..primitives.end as u32,
+        });
+    }
+
+    /// Replaces every waiting light's placeholder in `lights` by the light its shape makes.
+    /// A `shapeid` naming no shape, or a shape that cannot emit, is an error; one naming a shape
+    /// that was skipped (unknown `type`) skips the light, with a warning.
+    pub(super) fn resolve(
+        self,
+        lights: &mut Vec<Light>,
+        primitives: &[Primitive],
+        warnings: &mut Vec<Warning>,
+    ) -> Result<(), SceneError> {
+        let mut skipped = Vec::new();
+        for w in &self.wanted {
+            let mut matches = self.shapes.iter().filter(|s| s.id == w.id);
+            let Some(shape) = matches.next() else {
+                return Err(invalid(&w.at, self.no_such_id(&w.id)));
+            };
+            if matches.next().is_some() {
+                warnings.push(Warning {
+                    location: w.at.clone(),
+                    message: format!(
+                        "several shapes have the id '{}'; the first ({}) is the light",
+                        w.id, shape.at.path
+                    ),
+                });
+            }
+            let prims = &primitives[shape.primitives.start as usize..shape.primitives.end as usize];
+            if prims.is_empty() {
+                warnings.push(Warning {
+                    location: w.at.clone(),
+                    message: format!(
+                        "the shape '{}' ({}) was skipped, so this light is skipped too",
+                        w.id, shape.at.path
+                    ),
+                });
+                skipped.push(w.light);
+                continue;
+            }
+            let light = if SPHERE_TYPES.contains(&shape.kind.as_str()) {
+                match prims {
+                    [Primitive {
+                        shape: Shape::Sphere(s),
+                        ..
+                    }] => Some(Light::Sphere {
+                        center: s.center,
+                        radius: s.radius,
+                        intensity: w.intensity,
+                        samples: w.samples,
+                        method: w.method,
+                        surface: shape.primitives.clone(),
+                    }),
+                    _ => None,
+                }
+            } else if FLAT_TYPES.contains(&shape.kind.as_str()) {
+                let triangles: Option<Vec<[Vec3; 3]>> = prims
+                    .iter()
+                    .map(|p| match &p.shape {
+                        Shape::Triangle(t) => Some(t.p),
+                        _ => None,
+                    })
+                    .collect();
+                triangles.map(|triangles| Light::Triangles {
+                    cumulative_area: cumulative_areas(&triangles),
+                    triangles,
+                    intensity: w.intensity,
+                    samples: w.samples,
+                    method: w.method,
+                    surface: shape.primitives.clone(),
+                })
+            } else {
+                None
+            };
+            let Some(light) = light else {
+                return Err(invalid(
+                    &w.at,
+                    format!(
+                        "the shape '{}' ({}) is a '{}'; only a sphere, a triangle or a quad \
+                         ('plane') can be an area light",
+                        w.id, shape.at.path, shape.kind
+                    ),
+                ));
+            };
+            lights[w.light] = light;
+        }
+        if !skipped.is_empty() {
+            let mut i = 0;
+            lights.retain(|_| {
+                i += 1;
+                !skipped.contains(&(i - 1))
+            });
+        }
+        Ok(())
+    }
+
+    /// The message for a `shapeid` that names no shape: the ids there are.
+    fn no_such_id(&self, id: &str) -> String {
+        let mut ids: Vec<String> = Vec::new();
+        for s in &self.shapes {
+            if !ids.contains(&s.id) {
+                ids.push(s.id.clone());
+            }
+        }
+        let listed = if ids.is_empty() {
+            "no shape has an 'id'".to_string()
+        } else {
+            let shown: Vec<String> = ids
+                .iter()
+                .take(LISTED_IDS)
+                .map(|i| format!("'{i}'"))
+                .collect();
+            let more = ids.len().saturating_sub(LISTED_IDS);
+            let tail = if more > 0 {
+                format!(" and {more} more")
+            } else {
+                String::new()
+            };
+            format!("the shapes' ids are: {}{tail}", shown.join(", "))
+        };
+        format!("no shape has the id '{id}' ({listed})")
+    }
+}
+
+fn invalid(at: &Location, message: String) -> SceneError {
+    SceneError::Invalid {
+        location: at.clone(),
+        message,
+    }
+}
