@@ -236,6 +236,30 @@ const CASES: &[(&str, &[&str])] = &[
         &["rendermode", "expected a string"],
     ),
     ("exposure-negative.json", &["camera.exposure", "≥ 0"]),
+    (
+        "plane-normal-zero.json",
+        &["scene.shapes[0].normal", "normal must not be zero"],
+    ),
+    (
+        "texture-library-image-missing.json",
+        &["scene.textures[0].image", "Ball1-nowhere.jpg", "not found"],
+    ),
+    (
+        "texture-library-unknown-type.json",
+        &["scene.textures[0].type", "unknown texture type 'perlin'"],
+    ),
+    (
+        "box-euler-not-numbers.json",
+        &["scene.shapes[0].rotation[1]", "expected a number"],
+    ),
+    (
+        "mesh-euler-not-numbers.json",
+        &["scene.shapes[0].euler", "found a string"],
+    ),
+    (
+        "rectanglexy-zero-width.json",
+        &["scene.shapes[0].x1", "no area"],
+    ),
 ];
 
 #[test]
@@ -660,5 +684,5 @@ fn fifos_and_devices_as_assets_fail_cleanly_without_blocking() {
         .unwrap();
     let msg = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(0), "{msg}");
-    assert!(msg.contains("not an image file name"), "{msg}");
+    assert!(msg.contains("not an image file"), "{msg}");
 }

@@ -7,6 +7,9 @@ pub mod error;
 pub mod json;
 pub mod load;
 pub mod mesh_file;
+pub mod poly_sphere;
+pub mod rectangle;
+pub mod transform;
 
 pub use error::{SceneError, Warning};
 pub use load::{load, load_str, LoadOptions};
