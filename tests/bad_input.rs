@@ -241,6 +241,10 @@ const CASES: &[(&str, &[&str])] = &[
         &["scene.shapes[0].normal", "normal must not be zero"],
     ),
     (
+        "plane-distance-nan.json",
+        &["scene.shapes[0].distance", "NaN is not a finite number"],
+    ),
+    (
         "texture-library-image-missing.json",
         &["scene.textures[0].image", "Ball1-nowhere.jpg", "not found"],
     ),
