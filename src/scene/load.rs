@@ -198,8 +198,8 @@ impl<'a, 't> Library<'a, 't> {
 struct Libraries<'a, 't> {
     materials: Library<'a, 't>,
     textures: Library<'a, 't>,
-    /// Library textures already loaded, by name (`None`: the entry gave no texture).
-    loaded: HashMap<String, Option<u32>>,
+    /// Library textures already loaded: name → index into the scene's textures.
+    loaded: HashMap<String, u32>,
     /// Texture names already warned about (a name that is neither defined nor a file).
     warned: HashSet<String>,
 }
@@ -1407,13 +1407,13 @@ impl<'o> Loader<'o> {
         };
         if !t.is_object() {
             if let Some(&done) = libraries.loaded.get(rel) {
-                return Ok(done);
+                return Ok(Some(done));
             }
             if let Some((name, def)) = libraries.textures.find(rel) {
                 let (name, def) = (name.clone(), def.clone());
                 let done = self.library_texture(&def)?;
                 libraries.loaded.insert(name, done);
-                return Ok(done);
+                return Ok(Some(done));
             }
         }
         if rel.is_empty() {
@@ -1437,13 +1437,13 @@ impl<'o> Loader<'o> {
     }
 
     /// An entry of the texture library (see [`crate::texture`] for the forms).
-    fn library_texture(&mut self, def: &Node) -> Result<Option<u32>, SceneError> {
+    fn library_texture(&mut self, def: &Node) -> Result<u32, SceneError> {
         let type_node = required(def, &["type"])?;
         match type_node.str()?.to_ascii_lowercase().as_str() {
-            "constant" | "solid" | "color" | "colour" => {
+            "constant" => {
                 let c = required(def, &["colour", "color"])?.color()?;
                 self.textures.push(Texture::constant(c));
-                Ok(Some(self.textures.len() as u32 - 1))
+                Ok(self.textures.len() as u32 - 1)
             }
             "image" => {
                 let img = required(def, &["image", "path", "file", "filename"])?;
@@ -1454,7 +1454,7 @@ impl<'o> Loader<'o> {
                     opt_f32(def, &["offset_u"])?.unwrap_or(0.0),
                     -opt_f32(def, &["offset_v"])?.unwrap_or(0.0),
                 );
-                self.image_texture(&img, rel, offset).map(Some)
+                self.image_texture(&img, rel, offset)
             }
             other => Err(type_node.error(format!(
                 "unknown texture type '{other}' (known: constant, image)"
