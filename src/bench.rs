@@ -226,10 +226,11 @@ pub fn with_lights(scene: &Scene, variant: LightVariant) -> Scene {
     let bounds = scene
         .primitives
         .iter()
+        .filter(|p| p.shape.is_bounded())
         .fold(crate::accel::aabb::Aabb::EMPTY, |b, p| {
             b.union(p.shape.bounds())
         });
-    let (centre, diagonal) = if scene.primitives.is_empty() {
+    let (centre, diagonal) = if bounds == crate::accel::aabb::Aabb::EMPTY {
         (Vec3::ZERO, 1.0)
     } else {
         (bounds.center(), bounds.extent().length())

@@ -1,4 +1,16 @@
-//! Image textures with bilinear, wrapping lookup.
+//! Textures: images with bilinear, wrapping lookup, and constant colours.
+//!
+//! Besides a path on a material (`"tPath": "../textures/sicily.jpg"`), a scene may define named
+//! textures in a top-level (or `scene`-level) library that materials name:
+//! ```json
+//! "textures": [
+//!   { "name": "tex1", "type": "constant", "colour": [0.04, 0.42, 0.01] },
+//!   { "name": "ball1", "type": "image", "image": "Ball1.jpg", "offset_u": 0.4, "offset_v": 0.97 }
+//! ],
+//! "materials": [ { "name": "ball1", "kd": 0.8, "texture": "ball1" } ]
+//! ```
+//! A constant texture is a one-texel image: every lookup returns its colour. `offset_u` and
+//! `offset_v` shift where the image lies on the surface ([`Texture::offset`]).
 //!
 //! A [`Texture`] stores RGB texels row-major with row 0 at the top of the image. Values loaded
 //! from 8-bit images are `byte / 255` with no gamma decoding, the same convention as
@@ -26,6 +38,9 @@ pub struct Texture {
     /// `width * height` texels, row-major, row 0 = top of the image; values in \[0, 1\] = byte/255,
     /// no gamma decoding.
     pub texels: Vec<Vec3>,
+    /// Added to every lookup's uv before wrapping (zero unless a library entry gives
+    /// `offset_u`/`offset_v`; the loader turns those into this frame).
+    pub offset: Vec2,
 }
 
 impl Texture {
@@ -49,7 +64,18 @@ impl Texture {
             width: film.width,
             height: film.height,
             texels: film.pixels,
+            offset: Vec2::ZERO,
         })
+    }
+
+    /// A texture of one colour everywhere: a single texel, which bilinear lookup returns exactly.
+    pub fn constant(colour: Vec3) -> Texture {
+        Texture::from_texels(1, 1, vec![colour])
+    }
+
+    /// The same texture with its uv shifted by `offset` (see [`Texture::offset`]).
+    pub fn with_offset(self, offset: Vec2) -> Texture {
+        Texture { offset, ..self }
     }
 
     /// A texture from texels (row-major, row 0 at the top); `texels.len()` must be
@@ -64,6 +90,7 @@ impl Texture {
             width,
             height,
             texels,
+            offset: Vec2::ZERO,
         }
     }
 
@@ -80,11 +107,17 @@ impl Texture {
     /// (columns), v grows downwards (rows); (1,1) is the bottom-right corner of the image. Texel
     /// centres sit at ((i+0.5)/width, (j+0.5)/height). Coordinates wrap (repeat) in both
     /// directions, so u = 1.25 equals u = 0.25; filtering wraps across the edges too.
-    /// Non-finite uv returns texel (0,0). An empty texture returns black.
+    /// Non-finite uv returns texel (0,0). An empty texture returns black. [`Texture::offset`]
+    /// is added to `uv` first.
     pub fn sample(&self, uv: Vec2) -> Vec3 {
         if self.width == 0 || self.height == 0 {
             return Vec3::ZERO;
         }
+        if let [only] = self.texels[..] {
+            // A constant texture: its colour exactly (a blend of a texel with itself may round).
+            return only;
+        }
+        let uv = uv + self.offset;
         if !uv.is_finite() {
             return self.texel(0, 0);
         }
@@ -214,6 +247,19 @@ mod tests {
         // Just below the top edge is mostly the top row.
         let near_top = t.sample(Vec2::new(0.5, 0.2));
         assert!(near_top.x > near_top.z, "{near_top}");
+    }
+
+    #[test]
+    fn constant_textures_and_offsets() {
+        let c = Texture::constant(Vec3::new(0.04, 0.42, 0.01));
+        for uv in [Vec2::ZERO, Vec2::new(0.3, 0.9), Vec2::new(-17.5, 1e6)] {
+            assert_eq!(c.sample(uv), Vec3::new(0.04, 0.42, 0.01));
+        }
+        // An offset of one texel's width shows texel (1, 1) where texel (0, 1) was.
+        let t = grid();
+        let moved = t.clone().with_offset(Vec2::new(1.0 / 3.0, 0.0));
+        assert!(close(moved.sample(centre(&t, 0, 1)), t.texel(1, 1)));
+        assert!(!close(moved.sample(centre(&t, 0, 1)), t.texel(0, 1)));
     }
 
     #[test]

@@ -3,10 +3,10 @@
 //! closest primitive with bit-identical `t` and barycentrics, and the same any-hit answer, on
 //! random, grazing, axis-parallel and edge-aimed rays, over meshes and mixed scenes, including
 //! empty scenes, single primitives, degenerate triangles and duplicated primitives (where the
-//! lower primitive index wins a tie in `t`).
+//! lower primitive index wins a tie in `t`), and with infinite planes, which no tree holds.
 
 use raytracer::accel::{Accel, AccelKind, Bvh};
-use raytracer::geometry::{Candidate, Cylinder, Primitive, Shape, Sphere, Triangle};
+use raytracer::geometry::{Candidate, Cylinder, Plane, Primitive, Shape, Sphere, Triangle};
 use raytracer::math::{next_float_up, Vec3};
 use raytracer::ray::Ray;
 use raytracer::sampling::{hash, to_unit, uniform_sphere};
@@ -51,6 +51,13 @@ fn tri(a: Vec3, b: Vec3, c: Vec3) -> Primitive {
 fn sphere(c: Vec3, r: f32) -> Primitive {
     Primitive {
         shape: Shape::Sphere(Sphere::new(c, r, Vec3::Y, Vec3::X)),
+        material: 0,
+    }
+}
+
+fn plane(n: Vec3, d: f32) -> Primitive {
+    Primitive {
+        shape: Shape::Plane(Plane::new(n, d)),
         material: 0,
     }
 }
@@ -152,13 +159,15 @@ fn triangles(prims: &[Primitive]) -> Vec<[Vec3; 3]> {
         .collect()
 }
 
+/// The bounded primitives' box, at least [−1, 1]³.
 fn bounds(prims: &[Primitive]) -> (Vec3, Vec3) {
-    prims
-        .iter()
-        .fold((Vec3::splat(-1.0), Vec3::splat(1.0)), |(lo, hi), p| {
+    prims.iter().filter(|p| p.shape.is_bounded()).fold(
+        (Vec3::splat(-1.0), Vec3::splat(1.0)),
+        |(lo, hi), p| {
             let b = p.shape.bounds();
             (lo.min(b.min), hi.max(b.max))
-        })
+        },
+    )
 }
 
 /// Rays of every kind for a scene.
@@ -363,6 +372,39 @@ fn every_builder_matches_brute_force() {
     let points = vec![tri(Vec3::ONE, Vec3::ONE, Vec3::ONE); 9];
     total += check_scene("degenerate only", &points, &rays(&points, 1_000, 9));
     assert!(total >= 100_000, "only {total} rays");
+}
+
+#[test]
+fn planes_outside_the_trees_keep_the_contract() {
+    // Planes among mixed geometry: one through the axis-aligned triangles at y = 0 (ties in t),
+    // a duplicate of it later (ties between planes), tilted and axis-aligned ones, one far away.
+    let mut mixed = mixed_scene(200, 13);
+    mixed.insert(0, plane(Vec3::Y, 0.0));
+    mixed.insert(57, plane(Vec3::new(1.0, 2.0, -0.5), 1.5));
+    mixed.insert(120, plane(Vec3::X, -3.0));
+    mixed.push(plane(Vec3::Y, 0.0));
+    mixed.push(plane(Vec3::new(0.0, -1.0, 1.0), 1.0e4));
+    let n = check_scene("mixed with planes", &mixed, &rays(&mixed, 30_000, 14));
+    // Planes alone (the tree is empty) and one plane under one sphere (a list under `auto`).
+    let planes = vec![
+        plane(Vec3::Z, 1.0),
+        plane(Vec3::Z, 1.0),
+        plane(Vec3::ONE, -2.0),
+    ];
+    let m = check_scene("planes only", &planes, &rays(&planes, 4_000, 15));
+    let floor = vec![sphere(Vec3::new(0.0, 1.0, 0.0), 1.0), plane(Vec3::Y, 0.0)];
+    let k = check_scene("sphere on a floor", &floor, &rays(&floor, 4_000, 16));
+    assert!(n + m + k >= 38_000);
+    // A ray far outside every finite box still finds the floor, in every accelerator.
+    let ray = Ray::new(Vec3::new(1.0e5, 50.0, -7.0e4), Vec3::new(0.0, -1.0, 0.0));
+    for (name, accel) in accelerators(&mixed) {
+        let (p, c) = accel.closest(&mixed, &ray, f32::INFINITY).expect("hit");
+        assert_eq!((p, c.t), (0, 50.0), "{name}");
+        assert!(
+            accel.any(&mixed, &ray, 51.0, |p| p != 0),
+            "{name}: the duplicate blocks"
+        );
+    }
 }
 
 #[test]

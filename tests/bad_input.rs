@@ -307,6 +307,34 @@ const CASES: &[(&str, &[&str])] = &[
         "ambient-light-no-intensity.json",
         &["scene.lightsources[0]", "missing required key 'intensity'"],
     ),
+    (
+        "plane-normal-zero.json",
+        &["scene.shapes[0].normal", "normal must not be zero"],
+    ),
+    (
+        "plane-distance-nan.json",
+        &["scene.shapes[0].distance", "NaN is not a finite number"],
+    ),
+    (
+        "texture-library-image-missing.json",
+        &["scene.textures[0].image", "Ball1-nowhere.jpg", "not found"],
+    ),
+    (
+        "texture-library-unknown-type.json",
+        &["scene.textures[0].type", "unknown texture type 'perlin'"],
+    ),
+    (
+        "box-euler-not-numbers.json",
+        &["scene.shapes[0].rotation[1]", "expected a number"],
+    ),
+    (
+        "mesh-euler-not-numbers.json",
+        &["scene.shapes[0].euler", "found a string"],
+    ),
+    (
+        "rectanglexy-zero-width.json",
+        &["scene.shapes[0].x1", "no area"],
+    ),
 ];
 
 #[test]
@@ -731,5 +759,5 @@ fn fifos_and_devices_as_assets_fail_cleanly_without_blocking() {
         .unwrap();
     let msg = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(0), "{msg}");
-    assert!(msg.contains("not an image file name"), "{msg}");
+    assert!(msg.contains("not an image file"), "{msg}");
 }

@@ -16,6 +16,11 @@
 //!
 //! Primitive indices are reordered so that each leaf's are contiguous (`order`).
 //!
+//! Unbounded primitives (infinite planes, see [`crate::geometry::Shape::is_bounded`]) have no box
+//! to put in a node: they are kept out of the tree in a list of their own (`unbounded`), which
+//! every query tests first. A closest-hit query then starts from their best hit, so the tree is
+//! culled by it (a floor plane hides everything below it).
+//!
 //! Queries return exactly what testing every primitive returns: the hit of least `t`, and among
 //! equal `t` the one of least primitive index (see [`crate::accel`]).
 
@@ -206,6 +211,8 @@ pub struct Bvh {
     pairs: Vec<NodePair>,
     /// Primitive indices, leaf by leaf.
     order: Vec<u32>,
+    /// The unbounded primitives, in index order: outside the tree, tested by every query.
+    unbounded: Vec<u32>,
 }
 
 /// A primitive's bounds during the build, with its index.
@@ -482,9 +489,16 @@ fn median_split(refs: &mut [Ref], axis: usize) -> usize {
 impl Bvh {
     /// Builds a tree over `prims`. Fewer than `u32::MAX` primitives (the caller checks).
     pub fn build(prims: &[Primitive], options: BvhOptions) -> Bvh {
+        let unbounded: Vec<u32> = prims
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| !p.shape.is_bounded())
+            .map(|(i, _)| i as u32)
+            .collect();
         let mut refs: Vec<Ref> = prims
             .iter()
             .enumerate()
+            .filter(|(_, p)| p.shape.is_bounded())
             .map(|(i, p)| {
                 let b = p.shape.bounds();
                 Ref {
@@ -526,6 +540,7 @@ impl Bvh {
             }),
             pairs,
             order: refs.iter().map(|r| r.index).collect(),
+            unbounded,
         }
     }
 
@@ -556,11 +571,16 @@ impl Bvh {
         usize::from(self.root.is_some()) + 2 * self.pairs.len()
     }
 
-    /// Bytes held: the nodes and the primitive order.
+    /// Bytes held: the nodes, the primitive order and the unbounded list.
     pub fn memory_bytes(&self) -> usize {
         std::mem::size_of::<Bvh>()
             + self.pairs.capacity() * std::mem::size_of::<NodePair>()
-            + self.order.capacity() * std::mem::size_of::<u32>()
+            + (self.order.capacity() + self.unbounded.capacity()) * std::mem::size_of::<u32>()
+    }
+
+    /// The primitives kept outside the tree (unbounded shapes), in index order.
+    pub fn unbounded(&self) -> &[u32] {
+        &self.unbounded
     }
 
     /// Child `side` of the interior node `n`.
@@ -665,19 +685,31 @@ impl Bvh {
             })
     }
 
-    /// The closest hit with `0 < t < t_max` (least `t`, then least primitive index), visiting the
-    /// nearer child first and skipping subtrees that start beyond the best hit so far.
+    /// The closest hit with `0 < t < t_max` (least `t`, then least primitive index): the
+    /// unbounded primitives first, in index order, then the tree, visiting the nearer child first
+    /// and skipping subtrees that start beyond the best hit so far.
     pub fn closest(
         &self,
         prims: &[Primitive],
         r: &PreparedRay,
         t_max: f32,
     ) -> Option<(u32, Candidate)> {
-        let (lo, hi, root) = self.root?;
+        let mut best = Best::new(t_max);
+        // In index order with a strict bound, the first of equal-t hits stays; a tree primitive
+        // of lower index at the same t still wins in `leaf_closest`.
+        for &p in &self.unbounded {
+            if let Some(c) = prims[p as usize].shape.intersect_prepared(r, best.t) {
+                best.t = c.t;
+                best.index = p;
+                best.candidate = c;
+            }
+        }
+        let Some((lo, hi, root)) = self.root else {
+            return best.hit();
+        };
         if root.count > 0 {
             // A single leaf: no traversal.
-            let mut best = Best::new(t_max);
-            if slab(lo, hi, r, t_max).0 {
+            if slab(lo, hi, r, best.t).0 {
                 self.leaf_closest(prims, r, root, &mut best);
             }
             return best.hit();
@@ -685,29 +717,32 @@ impl Bvh {
         // One copy of the loop per octant of the direction, so the slab test's lane swaps are
         // fixed at compile time.
         match r.negative.bitmask() {
-            0 => self.closest_in::<false, false, false>(prims, r, t_max),
-            1 => self.closest_in::<true, false, false>(prims, r, t_max),
-            2 => self.closest_in::<false, true, false>(prims, r, t_max),
-            3 => self.closest_in::<true, true, false>(prims, r, t_max),
-            4 => self.closest_in::<false, false, true>(prims, r, t_max),
-            5 => self.closest_in::<true, false, true>(prims, r, t_max),
-            6 => self.closest_in::<false, true, true>(prims, r, t_max),
-            _ => self.closest_in::<true, true, true>(prims, r, t_max),
+            0 => self.closest_in::<false, false, false>(prims, r, best),
+            1 => self.closest_in::<true, false, false>(prims, r, best),
+            2 => self.closest_in::<false, true, false>(prims, r, best),
+            3 => self.closest_in::<true, true, false>(prims, r, best),
+            4 => self.closest_in::<false, false, true>(prims, r, best),
+            5 => self.closest_in::<true, false, true>(prims, r, best),
+            6 => self.closest_in::<false, true, true>(prims, r, best),
+            _ => self.closest_in::<true, true, true>(prims, r, best),
         }
     }
 
+    /// The tree's part of [`Bvh::closest`], starting from `best` (the unbounded primitives'
+    /// answer, or none).
     fn closest_in<const NX: bool, const NY: bool, const NZ: bool>(
         &self,
         prims: &[Primitive],
         r: &PreparedRay,
-        t_max: f32,
+        mut best: Best,
     ) -> Option<(u32, Candidate)> {
-        let (lo, hi, root) = self.root?;
-        if !slab(lo, hi, r, t_max).0 {
-            return None;
+        let Some((lo, hi, root)) = self.root else {
+            return best.hit();
+        };
+        if !slab(lo, hi, r, best.t).0 {
+            return best.hit();
         }
         let pr = PairRay::new(r);
-        let mut best = Best::new(t_max);
         // Entries: node identifier and entry distance.
         let mut stack = [(0u32, 0.0f32); STACK_SIZE];
         let mut top = 0usize;
@@ -762,7 +797,7 @@ impl Bvh {
     }
 
     /// Whether any primitive for which `blocks` holds is hit with `0 < t < t_max`; stops at the
-    /// first.
+    /// first. The unbounded primitives are tested first.
     pub fn any(
         &self,
         prims: &[Primitive],
@@ -770,6 +805,15 @@ impl Bvh {
         t_max: f32,
         blocks: impl Fn(u32) -> bool,
     ) -> bool {
+        if self.unbounded.iter().any(|&p| {
+            blocks(p)
+                && prims[p as usize]
+                    .shape
+                    .intersect_prepared(r, t_max)
+                    .is_some()
+        }) {
+            return true;
+        }
         let Some((lo, hi, root)) = self.root else {
             return false;
         };
@@ -890,11 +934,18 @@ mod tests {
         out
     }
 
-    /// Every primitive once, every box containing its contents, depth within the stack.
+    /// Every primitive once (the bounded ones in the tree, the others in the unbounded list),
+    /// every box containing its contents, depth within the stack.
     fn check(bvh: &Bvh, prims: &[Primitive], leaf_size: usize) {
         let mut seen = vec![false; prims.len()];
         for &p in &bvh.order {
             assert!(!seen[p as usize], "primitive {p} twice");
+            assert!(prims[p as usize].shape.is_bounded());
+            seen[p as usize] = true;
+        }
+        for &p in &bvh.unbounded {
+            assert!(!seen[p as usize], "primitive {p} twice");
+            assert!(!prims[p as usize].shape.is_bounded());
             seen[p as usize] = true;
         }
         assert!(seen.iter().all(|&s| s));
@@ -942,6 +993,39 @@ mod tests {
                 check(&Bvh::build_median(&prims, leaf), &prims, leaf);
                 check(&Bvh::build_sah(&prims, leaf), &prims, leaf);
             }
+        }
+    }
+
+    #[test]
+    fn planes_stay_out_of_the_tree_and_are_hit_far_outside_it() {
+        use crate::geometry::Plane;
+        let mut prims = grid(100);
+        let plane = |n: Vec3, d: f32| Primitive {
+            shape: Shape::Plane(Plane::new(n, d)),
+            material: 0,
+        };
+        prims.insert(3, plane(Vec3::Z, -5.0));
+        prims.push(plane(Vec3::Z, -5.0)); // a duplicate: the lower index wins the tie
+        for bvh in [Bvh::build_sah(&prims, 4), Bvh::build_median(&prims, 2)] {
+            check(&bvh, &prims, 4);
+            assert_eq!(bvh.unbounded(), &[3, 101]);
+            // Far outside the grid's box, straight down onto the plane z = −5.
+            let r = PreparedRay::new(&crate::ray::Ray::new(
+                Vec3::new(1.0e4, -3.0e4, 10.0),
+                -Vec3::Z,
+            ));
+            let (i, c) = bvh.closest(&prims, &r, f32::INFINITY).unwrap();
+            assert_eq!((i, c.t), (3, 15.0));
+            assert!(bvh.any(&prims, &r, 15.5, |_| true));
+            assert!(!bvh.any(&prims, &r, 15.0, |_| true));
+            assert!(bvh.any(&prims, &r, 15.5, |p| p == 101));
+            // Through the grid (z from 0 to 0.3 at these points): a triangle is nearer.
+            let r = PreparedRay::new(&crate::ray::Ray::new(Vec3::new(5.2, 0.2, 10.0), -Vec3::Z));
+            let (i, c) = bvh.closest(&prims, &r, f32::INFINITY).unwrap();
+            assert!(
+                prims[i as usize].shape.is_bounded() && c.t < 10.5,
+                "{i} {c:?}"
+            );
         }
     }
 

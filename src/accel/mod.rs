@@ -9,8 +9,9 @@
 //!
 //! This holds because each primitive test depends on `t_max` only through a final `t < t_max` on
 //! its computed `t` (so visiting order cannot change a primitive's answer), and because the box
-//! test is conservative (Ize 2013; see [`aabb::slab`]). `tests/accel.rs` checks it bit for bit
-//! against [`Accel::List`] on adversarial rays.
+//! test is conservative (Ize 2013; see [`aabb::slab`]). Unbounded primitives (infinite planes)
+//! are not in any tree: the BVH tests them against every ray before its traversal. `tests/accel.rs`
+//! checks all of this bit for bit against [`Accel::List`] on adversarial rays.
 
 pub mod aabb;
 pub mod bvh;

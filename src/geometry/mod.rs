@@ -5,14 +5,19 @@
 //! shape-specific numbers (barycentrics, which part of a cylinder), cheap enough to run on every
 //! candidate; [`Primitive::hit`] turns the closest one into a full [`Hit`] with point, error bound,
 //! normals and texture coordinates.
+//!
+//! Every shape but the infinite [`Plane`] is bounded; [`Shape::is_bounded`] tells the
+//! accelerators which primitives their trees may hold.
 
 pub mod cylinder;
 pub mod mesh;
+pub mod plane;
 pub mod sphere;
 pub mod triangle;
 
 pub use cylinder::Cylinder;
 pub use mesh::{Mesh, MeshUv};
+pub use plane::Plane;
 pub use sphere::Sphere;
 pub use triangle::Triangle;
 
@@ -34,6 +39,8 @@ pub enum Shape {
     Sphere(Sphere),
     Triangle(Triangle),
     Cylinder(Cylinder),
+    /// Unbounded: never in a BVH (see [`Shape::is_bounded`]).
+    Plane(Plane),
 }
 
 impl Shape {
@@ -47,7 +54,7 @@ impl Shape {
     /// The closest intersection with `0 < t < t_max` for a ray prepared once per traversal (what
     /// the accelerators call).
     ///
-    /// The shape's own test is followed by the accelerators' robust slab test on the shape's
+    /// For a bounded shape, the shape's own test is followed by the accelerators' robust slab test on the shape's
     /// bounds ([`crate::accel::aabb::slab`]): a hit is kept only if the ray passes the box, and
     /// its `t` is raised to the box's entry distance if rounding left it below. Every box
     /// containing the shape then passes the slab test for any bound `≥ t` (the computed entry and
@@ -58,12 +65,16 @@ impl Shape {
     ///
     /// The result depends on `t_max` only through the final `t < t_max`, so a hit found under one
     /// bound is found, with the same bits, under any larger bound.
+    ///
+    /// An infinite plane has no box to clip to; it is never in a tree, so its own test is the
+    /// answer (and it too depends on `t_max` only through the final `t < t_max`).
     #[inline(always)]
     pub fn intersect_prepared(&self, r: &PreparedRay, t_max: f32) -> Option<Candidate> {
         let c = match self {
             Shape::Triangle(t) => t.intersect_prepared(r, t_max),
             Shape::Sphere(s) => s.intersect(&r.ray, t_max),
             Shape::Cylinder(c) => c.intersect(&r.ray, t_max),
+            Shape::Plane(p) => return p.intersect(&r.ray, t_max),
         }?;
         let b = self.bounds();
         let (inside, entry) = slab(b.min.into(), b.max.into(), r, f32::INFINITY);
@@ -71,13 +82,21 @@ impl Shape {
         (inside && t < t_max).then_some(Candidate { t, aux: c.aux })
     }
 
-    /// Axis-aligned bounds.
+    /// Axis-aligned bounds; for an unbounded shape, the whole space (`±∞` on every axis).
     pub fn bounds(&self) -> Aabb {
         match self {
             Shape::Sphere(s) => s.bounds(),
             Shape::Triangle(t) => t.bounds(),
             Shape::Cylinder(c) => c.bounds(),
+            Shape::Plane(_) => Aabb::new(Vec3::NEG_INFINITY, Vec3::INFINITY),
         }
+    }
+
+    /// Whether the shape fits in a finite box. Unbounded shapes are kept out of BVHs and tested
+    /// against every ray.
+    #[inline]
+    pub fn is_bounded(&self) -> bool {
+        !matches!(self, Shape::Plane(_))
     }
 }
 
@@ -96,6 +115,7 @@ impl Primitive {
             Shape::Sphere(s) => s.hit(ray, c, prim),
             Shape::Triangle(t) => t.hit(c, prim, &meshes[t.mesh as usize]),
             Shape::Cylinder(cy) => cy.hit(ray, c, prim),
+            Shape::Plane(p) => p.hit(ray, c, prim),
         }
     }
 

@@ -12,18 +12,20 @@
 //!   the render allocates anything for them (mesh files are read first; their readers refuse
 //!   counts the file cannot hold).
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::{Component, Path, PathBuf};
 
 use super::error::{SceneError, Warning};
 use super::json::{NameIndex, Node, Source};
 use super::lights::{self, Emitters};
 use super::mesh_file::{read_mesh_with, MeshData, MeshLimits};
+use super::transform::{self, Affine};
+use super::{poly_sphere, rectangle};
 use super::{RenderMode, Scene, Variant};
 use crate::camera::{Camera, Handedness, Lens};
 use crate::files::input::{self, SizeLimit};
 use crate::files::shown;
-use crate::geometry::{Cylinder, Mesh, MeshUv, Primitive, Shape, Sphere, Triangle};
+use crate::geometry::{Cylinder, Mesh, MeshUv, Plane, Primitive, Shape, Sphere, Triangle};
 use crate::image_io::ReadLimits;
 use crate::light::{Falloff, Intensity, Light};
 use crate::material::{Material, Reflection};
@@ -168,6 +170,9 @@ const SHAPE_TYPES: &[&str] = &[
     "trianglemesh",
     "cylinder",
     "box",
+    "rectanglexy",
+    "rectanglexz",
+    "rectangleyz",
 ];
 const LIGHT_TYPES: &[&str] = &["pointlight", "arealight"];
 
@@ -181,10 +186,6 @@ struct Library<'a, 't> {
 }
 
 impl<'a, 't> Library<'a, 't> {
-    fn new() -> Self {
-        Self::default()
-    }
-
     fn push(&mut self, def: (String, Node<'a, 't>)) {
         self.index.push(&def.0);
         self.defs.push(def);
@@ -197,6 +198,41 @@ impl<'a, 't> Library<'a, 't> {
 
     fn names(&self) -> Vec<&str> {
         self.defs.iter().map(|(n, _)| n.as_str()).collect()
+    }
+}
+
+/// The named definitions shapes refer to: materials and textures (top-level or `scene`-level
+/// `materials` and `textures` arrays), with what has been made of the textures so far.
+#[derive(Default)]
+struct Libraries<'a, 't> {
+    materials: Library<'a, 't>,
+    textures: Library<'a, 't>,
+    /// Library textures already loaded: name → index into the scene's textures.
+    loaded: HashMap<String, u32>,
+    /// Texture names already warned about (a name that is neither defined nor a file).
+    warned: HashSet<String>,
+}
+
+impl<'a, 't> Libraries<'a, 't> {
+    /// Reads the `materials` and `textures` arrays of `holders`, in order. Entries without a
+    /// `name` cannot be referred to and are passed over.
+    fn read(holders: &[&Node<'a, 't>]) -> Result<Self, SceneError> {
+        let mut libs = Libraries::default();
+        for holder in holders {
+            for (key, lib) in [
+                ("materials", &mut libs.materials),
+                ("textures", &mut libs.textures),
+            ] {
+                if let Some(list) = holder.get(key) {
+                    for m in list.elements()? {
+                        if let Some(name) = m.get("name") {
+                            lib.push((name.str()?.to_string(), m.clone()));
+                        }
+                    }
+                }
+            }
+        }
+        Ok(libs)
     }
 }
 
@@ -374,20 +410,11 @@ impl<'o> Loader<'o> {
                 self.light(&l)?;
             }
         }
-        let mut library = Library::new();
-        for holder in [root, &scene_node] {
-            if let Some(list) = holder.get("materials") {
-                for m in list.elements()? {
-                    if let Some(name) = m.get("name") {
-                        library.push((name.str()?.to_string(), m.clone()));
-                    }
-                }
-            }
-        }
+        let mut libraries = Libraries::read(&[root, &scene_node])?;
         if let Some(shapes) = scene_node.get_any(&["shapes", "objects", "geometry"]) {
             for s in shapes.elements()? {
                 let first = self.primitives.len();
-                self.shape(&s, mode, &library)?;
+                self.shape(&s, mode, &mut libraries)?;
                 self.emitters.shape(&s, first..self.primitives.len());
             }
         }
@@ -947,7 +974,12 @@ impl<'o> Loader<'o> {
         Ok((total as u32, method))
     }
 
-    fn shape(&mut self, s: &Node, mode: RenderMode, library: &Library) -> Result<(), SceneError> {
+    fn shape(
+        &mut self,
+        s: &Node,
+        mode: RenderMode,
+        libraries: &mut Libraries,
+    ) -> Result<(), SceneError> {
         if !s.is_object() {
             return Err(s.error(format!("a shape is an object, found {}", s.kind())));
         }
@@ -971,6 +1003,9 @@ impl<'o> Loader<'o> {
                 | "cylinder"
                 | "uvcylinder"
                 | "box"
+                | "rectanglexy"
+                | "rectanglexz"
+                | "rectangleyz"
         );
         if !known {
             let near = nearest(&kind, SHAPE_TYPES);
@@ -980,7 +1015,7 @@ impl<'o> Loader<'o> {
             );
             return Ok(());
         }
-        let material = self.material(s, mode, library)?;
+        let material = self.material(s, mode, libraries)?;
         match kind.as_str() {
             "sphere" | "uvsphere" => {
                 let center = required(s, &["center", "centre", "position"])?.vec3()?;
@@ -1022,14 +1057,17 @@ impl<'o> Loader<'o> {
                 let has_corners =
                     s.has_any(&["v0", "v1", "point1", "p0", "points", "vertices", "corner1"]);
                 if s.has_any(&["normal", "distance"]) && !has_corners {
-                    self.warn(
-                        s,
-                        "infinite planes (normal + distance) are not supported; skipped",
-                    );
+                    let plane = infinite_plane(s)?;
+                    self.primitives.push(Primitive {
+                        shape: Shape::Plane(plane),
+                        material,
+                    });
                     return Ok(());
                 }
                 let p = if let (Some(a), Some(b)) = (s.get("corner1"), s.get("corner2")) {
                     axis_rectangle(s, a.vec3()?, b.vec3()?)?
+                } else if !has_corners && s.has_any(&["center", "centre"]) {
+                    centred_rectangle(s)?
                 } else {
                     self.corners(s, 4)?
                 };
@@ -1075,11 +1113,33 @@ impl<'o> Loader<'o> {
                         required(s, &["max"])?.vec3()?,
                     )
                 };
-                if s.has_any(&["rotation", "rot"]) {
-                    self.warn(s, "box rotation is not supported; rendered axis-aligned");
+                let (mut p, faces) = box_mesh(min.min(max), min.max(max));
+                // A box given by its centre turns about its centre; one given by its corners
+                // turns about the world origin (docs/scene-format.md gives the evidence).
+                if let Some(r) = transform::rotation(s)? {
+                    let pivot = if s.has_any(&["center", "centre"]) {
+                        0.5 * (min + max)
+                    } else {
+                        Vec3::ZERO
+                    };
+                    let a = Affine {
+                        linear: r,
+                        translation: pivot - r * pivot,
+                    };
+                    p.iter_mut().for_each(|q| *q = a.point(*q));
                 }
-                let (p, faces) = box_mesh(min.min(max), min.max(max));
                 self.add_mesh(s, p, None, MeshUv::Strip, faces, material)?;
+            }
+            "rectanglexy" | "rectanglexz" | "rectangleyz" => {
+                let r = rectangle::read(s, &kind)?;
+                self.add_mesh(
+                    s,
+                    r.corners.to_vec(),
+                    None,
+                    MeshUv::PerVertex(r.uvs.to_vec()),
+                    vec![[0, 1, 2], [0, 2, 3]],
+                    material,
+                )?;
             }
             _ => self.mesh(s, material)?,
         }
@@ -1139,6 +1199,24 @@ impl<'o> Loader<'o> {
     }
 
     fn mesh(&mut self, s: &Node, material: u32) -> Result<(), SceneError> {
+        if s.get_any(&[
+            "mPath",
+            "plyPath",
+            "modelpath",
+            "model",
+            "path",
+            "file",
+            "filename",
+        ])
+        .is_none()
+            && poly_sphere::applies(s)
+        {
+            for m in poly_sphere::read(s)? {
+                let uv = m.uvs.map_or(MeshUv::Strip, MeshUv::PerVertex);
+                self.add_mesh(s, m.positions, m.normals, uv, m.faces, material)?;
+            }
+            return Ok(());
+        }
         let file_keys = [
             "mPath",
             "plyPath",
@@ -1167,25 +1245,9 @@ impl<'o> Loader<'o> {
         } else {
             self.inline_mesh(s)?
         };
-        // Scale, then translate.
-        if let Some(n) = s.get_any(&["scale", "sizeScale", "size"]) {
-            let k = n.color()?;
-            data.positions.iter_mut().for_each(|p| *p *= k);
-        }
-        if let Some(n) = s.get_any(&[
-            "position",
-            "pos",
-            "offset",
-            "translate",
-            "translation",
-            "center",
-        ]) {
-            let t = n.vec3()?;
-            data.positions.iter_mut().for_each(|p| *p += t);
-        }
-        if let Some(n) = s.get_any(&["rotation", "euler", "r1"]) {
-            self.warn(&n, "mesh rotation is not supported; ignored");
-        }
+        // Scale, then rotate, then translate.
+        let placement = transform::mesh_placement(s)?;
+        transform::place_mesh(&placement, &mut data.positions, &mut data.normals);
         let uv = match data.uvs {
             Some(uv) => MeshUv::PerVertex(uv),
             None => MeshUv::Strip,
@@ -1385,15 +1447,15 @@ impl<'o> Loader<'o> {
         &mut self,
         s: &Node,
         mode: RenderMode,
-        library: &Library,
+        libraries: &mut Libraries,
     ) -> Result<u32, SceneError> {
         let mut m = Material::default();
         let mut node = s.get("material");
         if let Some(named) = node.as_ref().and_then(|n| n.str().ok()) {
-            match library.find(named) {
+            match libraries.materials.find(named) {
                 Some((_, def)) => node = Some(def.clone()),
                 None => {
-                    let names = library.names();
+                    let names = libraries.materials.names();
                     let at = node.unwrap_or_else(|| s.clone());
                     return Err(at.error(format!(
                         "no material named '{named}' (the scene defines: {})",
@@ -1498,15 +1560,16 @@ impl<'o> Loader<'o> {
                 .and_then(|n| n.get_any(&TEXTURE_KEYS))
                 .or_else(|| s.get_any(&TEXTURE_KEYS));
             if let Some(t) = tex_node {
-                m.texture = self.texture(&t)?;
+                m.texture = self.texture(&t, libraries)?;
             }
         }
         self.materials.push(m);
         Ok(self.materials.len() as u32 - 1)
     }
 
-    /// A texture reference: a path string, or an object with a path.
-    fn texture(&mut self, t: &Node) -> Result<Option<u32>, SceneError> {
+    /// A texture reference: the name of a texture library entry, a path string, or an object
+    /// with a path.
+    fn texture(&mut self, t: &Node, libraries: &mut Libraries) -> Result<Option<u32>, SceneError> {
         if matches!(t.value, jsonc_parser::ast::Value::Array(_)) {
             return Ok(None); // texture coordinates (`texturemap` on meshes), read with the mesh
         }
@@ -1525,16 +1588,75 @@ impl<'o> Loader<'o> {
             let s = t.str()?;
             (t.clone(), s)
         };
-        if rel.is_empty() || Path::new(rel).extension().is_none() {
-            self.warn(
-                &node,
-                format!("'{rel}' is not an image file name; texture ignored"),
-            );
+        if !t.is_object() {
+            if let Some(&done) = libraries.loaded.get(rel) {
+                return Ok(Some(done));
+            }
+            if let Some((name, def)) = libraries.textures.find(rel) {
+                let (name, def) = (name.clone(), def.clone());
+                let done = self.library_texture(&def)?;
+                libraries.loaded.insert(name, done);
+                return Ok(Some(done));
+            }
+        }
+        if rel.is_empty() {
+            self.warn(&node, "an empty texture file name; texture ignored");
             return Ok(None);
         }
-        let path = self.resolve(&node, rel)?;
+        if Path::new(rel).extension().is_none() {
+            // A procedural texture of the file's own program (`wood`, `rainbow`), or a typo.
+            if libraries.warned.insert(rel.to_string()) {
+                self.warn(
+                    &node,
+                    format!(
+                        "no texture named '{rel}' is defined and it is not an image file; the \
+                         material's diffuse colour is used (warned once per name)"
+                    ),
+                );
+            }
+            return Ok(None);
+        }
+        self.image_texture(&node, rel, Vec2::ZERO).map(Some)
+    }
+
+    /// An entry of the texture library (see [`crate::texture`] for the forms).
+    fn library_texture(&mut self, def: &Node) -> Result<u32, SceneError> {
+        let type_node = required(def, &["type"])?;
+        match type_node.str()?.to_ascii_lowercase().as_str() {
+            "constant" => {
+                let c = required(def, &["colour", "color"])?.color()?;
+                self.textures.push(Texture::constant(c));
+                Ok(self.textures.len() as u32 - 1)
+            }
+            "image" => {
+                let img = required(def, &["image", "path", "file", "filename"])?;
+                let rel = img.str()?;
+                // The file's own program reads image row (1 − v − offset_v)·height: its v grows
+                // up the image, so its offset moves the lookup up (−v here).
+                let offset = Vec2::new(
+                    opt_f32(def, &["offset_u"])?.unwrap_or(0.0),
+                    -opt_f32(def, &["offset_v"])?.unwrap_or(0.0),
+                );
+                self.image_texture(&img, rel, offset)
+            }
+            other => Err(type_node.error(format!(
+                "unknown texture type '{other}' (known: constant, image)"
+            ))),
+        }
+    }
+
+    /// The image file `rel` (resolved as assets are) as a texture with uv offset `offset`, loaded
+    /// once per file and offset.
+    fn image_texture(&mut self, node: &Node, rel: &str, offset: Vec2) -> Result<u32, SceneError> {
+        let path = self.resolve(node, rel)?;
         if let Some(&i) = self.texture_index.get(&path) {
-            return Ok(Some(i));
+            let base = &self.textures[i as usize];
+            if base.offset == offset {
+                return Ok(i);
+            }
+            let moved = base.clone().with_offset(offset);
+            self.textures.push(moved);
+            return Ok(self.textures.len() as u32 - 1);
         }
         let limits = ReadLimits {
             max_pixels: self.options.max_texture_pixels,
@@ -1545,10 +1667,10 @@ impl<'o> Loader<'o> {
         if tex.width == 0 || tex.height == 0 {
             return Err(node.error(format!("the texture {} is empty", shown(&path))));
         }
-        self.textures.push(tex);
+        self.textures.push(tex.with_offset(offset));
         let i = self.textures.len() as u32 - 1;
         self.texture_index.insert(path, i);
-        Ok(Some(i))
+        Ok(i)
     }
 
     /// The first existing file among the scene's folder, the asset folders and the working
@@ -1665,6 +1787,41 @@ fn axis_rectangle(s: &Node, a: Vec3, b: Vec3) -> Result<Vec<Vec3>, SceneError> {
         return Err(s.error("the rectangle's corners span no area"));
     }
     Ok(vec![a, c1, b, c3])
+}
+
+/// The infinite plane `normal · x = distance` (unit normal): `{"normal": [0, 1, 0], "distance":
+/// -1}` is the floor `y = −1`. The corpus files put the plane where the rest of the scene rests
+/// only under this sign (docs/scene-format.md).
+fn infinite_plane(s: &Node) -> Result<Plane, SceneError> {
+    let nn = required(s, &["normal"])?;
+    let normal = nn.vec3()?;
+    if normal == Vec3::ZERO {
+        return Err(nn.error("the plane's normal must not be zero"));
+    }
+    let len = normal.length();
+    if !len.is_finite() {
+        return Err(nn.error("the plane's normal is too long to normalise"));
+    }
+    let distance = required(s, &["distance"])?.f32()?;
+    Ok(Plane::new(normal, distance))
+}
+
+/// A rectangle given by its centre, `width` (along x) and `height` (along z), lying in the
+/// plane y = centre.y with normal +y before the optional rotation (`rot`, `rotation`, `euler`:
+/// Euler degrees, see [`transform`]) about its centre. Corners in cycle order, starting at
+/// (−width/2, −height/2).
+fn centred_rectangle(s: &Node) -> Result<Vec<Vec3>, SceneError> {
+    let c = required(s, &["center", "centre"])?.vec3()?;
+    let w = positive(s, "width")?;
+    let h = positive(s, "height")?;
+    let r = transform::rotation(s)?.unwrap_or(glam::Mat3::IDENTITY);
+    let local = [
+        Vec3::new(-0.5 * w, 0.0, -0.5 * h),
+        Vec3::new(0.5 * w, 0.0, -0.5 * h),
+        Vec3::new(0.5 * w, 0.0, 0.5 * h),
+        Vec3::new(-0.5 * w, 0.0, 0.5 * h),
+    ];
+    Ok(local.iter().map(|&p| c + r * p).collect())
 }
 
 /// The 12 triangles of an axis-aligned box.

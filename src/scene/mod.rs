@@ -8,6 +8,9 @@ pub mod json;
 mod lights;
 pub mod load;
 pub mod mesh_file;
+pub mod poly_sphere;
+pub mod rectangle;
+pub mod transform;
 
 pub use error::{SceneError, Warning};
 pub use load::{load, load_str, LoadOptions};
