@@ -134,6 +134,8 @@ pub fn sphere_grid(g: u32, s: u32, width: u32, height: u32) -> Scene {
         background: Vec3::splat(0.05),
         mode: RenderMode::Phong,
         exposure: 1.0,
+        pixel_samples: None,
+        light_samples: None,
         lights: vec![Light::Point {
             position: light,
             intensity: Intensity {
@@ -860,6 +862,8 @@ pub fn random_scene(n: usize, width: u32, height: u32, backdrop: bool) -> Scene 
         background: Vec3::ZERO,
         mode: RenderMode::Phong,
         exposure: 1.0,
+        pixel_samples: None,
+        light_samples: None,
         lights: vec![Light::Point {
             position: Vec3::new(2.0, 3.0, -3.0),
             intensity: Intensity {

@@ -7,11 +7,17 @@
 //! nearest of a fixed set of checkpoints rather than from the start of its line (a file can be one
 //! line with a warning every few bytes). [`work_count`] counts the steps both take, so tests can
 //! check that growth without timing anything.
+//!
+//! Every lookup is also recorded: for each object looked into, which of its members a lookup
+//! returned and which names it was asked for. After a load, [`Node::unread_members`] lists the
+//! members no lookup returned, so that keys the loader does not know can be reported without a
+//! second list of every key (`scene::keys`).
 
 use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::hash::{BuildHasher, RandomState};
 use std::path::{Path, PathBuf};
+use std::rc::Rc;
 
 use jsonc_parser::ast::{ObjectProp, ObjectPropName, Value};
 use jsonc_parser::common::Ranged;
@@ -28,6 +34,12 @@ const CHECKPOINT_BYTES: usize = 256;
 /// costs less than building an index.
 const LINEAR_LOOKUP_MAX: usize = 16;
 
+/// Most distinct names recorded as asked of one object. The loader asks an object for at most a
+/// few dozen names, except where it asks for one key per element (`v0`, `v1`, … of a counted
+/// mesh); the cap keeps each lookup's record, and each suggestion for an unread key, of bounded
+/// cost there. The names asked first (the fixed keys of the object's kind) are the ones kept.
+const MOST_NAMES_ASKED: usize = 128;
+
 thread_local! {
     static WORK: Cell<u64> = const { Cell::new(0) };
 }
@@ -37,6 +49,11 @@ thread_local! {
 /// grows; take the difference around a load to see how its work grows with the input.
 pub fn work_count() -> u64 {
     WORK.with(Cell::get)
+}
+
+/// Adds `steps` to [`work_count`]: for work done on the document outside this module.
+pub(crate) fn work_count_add(steps: usize) {
+    count_work(steps);
 }
 
 fn count_work(steps: usize) {
@@ -98,6 +115,32 @@ impl NameIndex {
     }
 }
 
+/// What lookups did with one object: which members they returned, and the distinct names they
+/// asked for (the first [`MOST_NAMES_ASKED`]), as positions in [`Source`]'s name list.
+struct ObjectReads {
+    returned: Vec<bool>,
+    asked: Vec<u32>,
+}
+
+/// The names any object was asked for, each once, and their positions.
+#[derive(Default)]
+struct Names {
+    list: Vec<Box<str>>,
+    index: NameIndex,
+}
+
+impl Names {
+    fn id(&mut self, name: &str) -> u32 {
+        let list = &self.list;
+        if let Some(i) = self.index.find(name, |i| &list[i]) {
+            return i as u32;
+        }
+        self.index.push(name);
+        self.list.push(name.into());
+        self.list.len() as u32 - 1
+    }
+}
+
 /// The text of a scene file and where its lines start.
 pub struct Source<'t> {
     pub file: PathBuf,
@@ -107,6 +150,9 @@ pub struct Source<'t> {
     checkpoints: Vec<usize>,
     /// Member indexes of the large objects looked into so far, by the object's start offset.
     members: RefCell<HashMap<usize, NameIndex>>,
+    /// What lookups did with each object looked into, by the object's start offset.
+    reads: RefCell<HashMap<usize, ObjectReads>>,
+    names: RefCell<Names>,
 }
 
 impl<'t> Source<'t> {
@@ -127,6 +173,29 @@ impl<'t> Source<'t> {
             line_starts,
             checkpoints,
             members: RefCell::new(HashMap::new()),
+            reads: RefCell::new(HashMap::new()),
+            names: RefCell::new(Names::default()),
+        }
+    }
+
+    /// Records a lookup of `key` in the object of `len` members that starts at byte `start`, and
+    /// the member it returned.
+    fn record(&self, start: usize, len: usize, key: &str, returned: Option<usize>) {
+        count_work(1);
+        let mut reads = self.reads.borrow_mut();
+        let object = reads.entry(start).or_insert_with(|| ObjectReads {
+            returned: vec![false; len],
+            asked: Vec::new(),
+        });
+        if let Some(i) = returned {
+            object.returned[i] = true;
+        }
+        if object.asked.len() < MOST_NAMES_ASKED {
+            let id = self.names.borrow_mut().id(key);
+            // At most MOST_NAMES_ASKED comparisons: a bounded cost per lookup.
+            if !object.asked.contains(&id) {
+                object.asked.push(id);
+            }
         }
     }
 
@@ -274,33 +343,181 @@ impl<'a, 't> Node<'a, 't> {
         let Value::Object(o) = self.value else {
             return None;
         };
+        let found = self.src.member_position(o.start(), &o.properties, key);
+        self.src.record(o.start(), o.properties.len(), key, found);
+        let i = found?;
+        Some(self.child(&o.properties[i].value, key.to_string()))
+    }
+
+    /// The member `key` like [`Node::get`], but unrecorded: the lookup neither marks the member
+    /// as read nor the object as looked into (for a look at an object that may never be used,
+    /// like the `name` of a library material).
+    pub fn peek(&self, key: &str) -> Option<Node<'a, 't>> {
+        let Value::Object(o) = self.value else {
+            return None;
+        };
         let i = self.src.member_position(o.start(), &o.properties, key)?;
         Some(self.child(&o.properties[i].value, key.to_string()))
     }
 
-    /// The first present member among `keys` (spellings of the same concept).
+    /// The first present member among `keys` (spellings of the same concept). The other
+    /// spellings count as asked for, so that a second spelling present beside the first is
+    /// reported as such.
     pub fn get_any(&self, keys: &[&str]) -> Option<Node<'a, 't>> {
-        keys.iter().find_map(|k| self.get(k))
+        let (i, node) = keys
+            .iter()
+            .enumerate()
+            .find_map(|(i, k)| self.get(k).map(|n| (i, n)))?;
+        if let Value::Object(o) = self.value {
+            for k in &keys[i + 1..] {
+                self.src.record(o.start(), o.properties.len(), k, None);
+            }
+        }
+        Some(node)
     }
 
-    /// Whether any of `keys` is present.
+    /// Marks the members among `keys` as read without reading them: for keys that the loader
+    /// reads only in some modes (a texture in `rendermode: binary`), which are known in all.
+    pub fn mark_read(&self, keys: &[&str]) {
+        for k in keys {
+            let _ = self.get(k);
+        }
+    }
+
+    /// Whether any of `keys` is present. Every one present counts as read: the loader decides
+    /// something from them all.
     pub fn has_any(&self, keys: &[&str]) -> bool {
-        self.get_any(keys).is_some()
+        let mut any = false;
+        for k in keys {
+            any |= self.get(k).is_some();
+        }
+        any
     }
 
-    /// The object's members, in file order.
+    /// Marks every member read: for an object skipped as a whole, with a warning of its own.
+    pub fn mark_all_read(&self) {
+        if let Value::Object(o) = self.value {
+            for (i, p) in o.properties.iter().enumerate() {
+                let key = prop_name(&p.name);
+                self.src.record(o.start(), o.properties.len(), key, Some(i));
+            }
+        }
+    }
+
+    /// The object's members, in file order (each counts as read).
     pub fn members(&self) -> Vec<(String, Node<'a, 't>)> {
         match self.value {
             Value::Object(o) => o
                 .properties
                 .iter()
-                .map(|p| {
+                .enumerate()
+                .map(|(i, p)| {
                     let k = prop_name(&p.name).to_string();
+                    self.src.record(o.start(), o.properties.len(), &k, Some(i));
                     (k.clone(), self.child(&p.value, k))
                 })
                 .collect(),
             _ => Vec::new(),
         }
+    }
+
+    /// The members that no lookup returned, in file order, of every object under this value
+    /// that some lookup looked into ([`Node::peek`] does not count). Objects never looked into
+    /// are not searched, nor is anything inside an unread member.
+    ///
+    /// The walk keeps each value's place as a link to its parent and spells out the paths of the
+    /// unread members only, so its cost is linear in the size of the document however deeply it
+    /// nests.
+    pub fn unread_members(&self) -> Vec<Unread<'a, 't>> {
+        #[derive(Clone, Copy)]
+        enum Segment<'a> {
+            Root,
+            Index(usize),
+            Key(&'a str),
+        }
+        let reads = self.src.reads.borrow();
+        let names = self.src.names.borrow();
+        // (parent, segment) of each container on the way; `stack` holds positions in it.
+        let mut places: Vec<(usize, Segment<'a>)> = vec![(0, Segment::Root)];
+        let mut stack: Vec<(&'a Value<'t>, usize)> = vec![(self.value, 0)];
+        // (byte offset of the member, place of its object, key, value, names asked of the object)
+        type Found<'a, 't> = (usize, usize, &'a str, &'a Value<'t>, Rc<[Box<str>]>);
+        let mut found: Vec<Found<'a, 't>> = Vec::new();
+        while let Some((value, place)) = stack.pop() {
+            count_work(1);
+            match value {
+                Value::Array(a) => {
+                    for (i, v) in a.elements.iter().enumerate().rev() {
+                        if matches!(v, Value::Array(_) | Value::Object(_)) {
+                            places.push((place, Segment::Index(i)));
+                            stack.push((v, places.len() - 1));
+                        }
+                    }
+                }
+                Value::Object(o) => {
+                    let Some(r) = reads.get(&o.start()) else {
+                        continue;
+                    };
+                    let mut asked: Option<Rc<[Box<str>]>> = None;
+                    for (i, p) in o.properties.iter().enumerate().rev() {
+                        count_work(1);
+                        let key = prop_name(&p.name);
+                        if r.returned[i] {
+                            if matches!(p.value, Value::Array(_) | Value::Object(_)) {
+                                places.push((place, Segment::Key(key)));
+                                stack.push((&p.value, places.len() - 1));
+                            }
+                        } else {
+                            let asked = asked
+                                .get_or_insert_with(|| {
+                                    r.asked
+                                        .iter()
+                                        .map(|&id| names.list[id as usize].clone())
+                                        .collect()
+                                })
+                                .clone();
+                            found.push((p.start(), place, key, &p.value, asked));
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        found.sort_by_key(|f| f.0);
+        found
+            .into_iter()
+            .map(|(_, place, key, value, asked)| {
+                let mut segments = vec![Segment::Key(key)];
+                let mut at = place;
+                while at != 0 {
+                    let (parent, segment) = places[at];
+                    segments.push(segment);
+                    at = parent;
+                }
+                let mut path = self.path.clone();
+                for segment in segments.iter().rev() {
+                    match segment {
+                        Segment::Root => {}
+                        Segment::Index(i) => path.push_str(&format!("[{i}]")),
+                        Segment::Key(k) => {
+                            if !path.is_empty() {
+                                path.push('.');
+                            }
+                            path.push_str(k);
+                        }
+                    }
+                }
+                Unread {
+                    key,
+                    node: Node {
+                        value,
+                        path,
+                        src: self.src,
+                    },
+                    asked,
+                }
+            })
+            .collect()
     }
 
     /// The elements of an array.
@@ -420,6 +637,16 @@ impl<'a, 't> Node<'a, 't> {
         }
         Ok(out)
     }
+}
+
+/// A member that no lookup returned, in an object that some lookup looked into.
+pub struct Unread<'a, 't> {
+    pub key: &'a str,
+    /// The member's value, with the member's path.
+    pub node: Node<'a, 't>,
+    /// The distinct names lookups asked the member's object for, in the order first asked
+    /// (the first [`MOST_NAMES_ASKED`] of them).
+    pub asked: Rc<[Box<str>]>,
 }
 
 fn prop_name<'x>(name: &'x ObjectPropName<'_>) -> &'x str {

@@ -5,6 +5,7 @@
 
 pub mod error;
 pub mod json;
+pub mod keys;
 pub mod load;
 pub mod mesh_file;
 
@@ -48,6 +49,12 @@ pub struct Scene {
     pub mode: RenderMode,
     /// Radiance scale applied before tone mapping.
     pub exposure: f32,
+    /// Samples per pixel the file asks for (`pixelsample` and other spellings); the render takes
+    /// them unless told otherwise (`--spp`).
+    pub pixel_samples: Option<u32>,
+    /// Shadow rays per shading point for every area light, if the file sets them for all at once
+    /// (`lightsample` and other spellings).
+    pub light_samples: Option<u32>,
     pub lights: Vec<Light>,
     pub primitives: Vec<Primitive>,
     pub materials: Vec<Material>,
