@@ -236,6 +236,31 @@ const CASES: &[(&str, &[&str])] = &[
         &["rendermode", "expected a string"],
     ),
     ("exposure-negative.json", &["camera.exposure", "≥ 0"]),
+    (
+        "pixelsample-negative.json",
+        &[":1:18:", "pixelsample", "whole number", "-4"],
+    ),
+    (
+        "pixelsample-fraction.json",
+        &["pixelsample", "whole number", "2.5"],
+    ),
+    (
+        "pixelsample-absurd.json",
+        &[
+            "pixel_sample_num",
+            "1000000 samples per pixel",
+            "limit of 65536",
+            "--max-pixel-samples",
+        ],
+    ),
+    (
+        "lightsample-absurd.json",
+        &["lightsample", "limit of 65536", "--max-light-samples"],
+    ),
+    (
+        "no-scene.json",
+        &[":1:1:", "(root)", "nothing to render", "'scene'"],
+    ),
 ];
 
 #[test]
