@@ -136,6 +136,8 @@ pub fn sphere_grid(g: u32, s: u32, width: u32, height: u32) -> Scene {
         exposure: 1.0,
         ambient: Vec3::ZERO,
         reflection: crate::material::Reflection::Added,
+        pixel_samples: None,
+        light_samples: None,
         lights: vec![Light::Point {
             position: light,
             intensity: Intensity {
@@ -882,6 +884,8 @@ pub fn random_scene(n: usize, width: u32, height: u32, backdrop: bool) -> Scene 
         exposure: 1.0,
         ambient: Vec3::ZERO,
         reflection: crate::material::Reflection::Added,
+        pixel_samples: None,
+        light_samples: None,
         lights: vec![Light::Point {
             position: Vec3::new(2.0, 3.0, -3.0),
             intensity: Intensity {

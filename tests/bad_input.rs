@@ -335,6 +335,31 @@ const CASES: &[(&str, &[&str])] = &[
         "rectanglexy-zero-width.json",
         &["scene.shapes[0].x1", "no area"],
     ),
+    (
+        "pixelsample-negative.json",
+        &[":1:18:", "pixelsample", "whole number", "-4"],
+    ),
+    (
+        "pixelsample-fraction.json",
+        &["pixelsample", "whole number", "2.5"],
+    ),
+    (
+        "pixelsample-absurd.json",
+        &[
+            "pixel_sample_num",
+            "1000000 samples per pixel",
+            "limit of 65536",
+            "--max-pixel-samples",
+        ],
+    ),
+    (
+        "lightsample-absurd.json",
+        &["lightsample", "limit of 65536", "--max-light-samples"],
+    ),
+    (
+        "no-scene.json",
+        &[":1:1:", "(root)", "nothing to render", "'scene'"],
+    ),
 ];
 
 #[test]

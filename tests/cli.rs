@@ -337,3 +337,95 @@ fn output_inside_a_file_is_an_error() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("out.png"));
 }
+
+/// `SMALL` with `extra` members added at its top level.
+fn small_with(extra: &str) -> String {
+    SMALL.replacen('{', &format!("{{ {extra}"), 1)
+}
+
+#[test]
+fn strict_turns_every_warning_into_an_error_and_writes_nothing() {
+    let text = small_with(r#""pixelsampel": 4,"#).replace(r#""kd": 0.8"#, r#""kdd": 0.8"#);
+    let (dir, scene) = write_scene(&text);
+    let out = dir.path().join("out.png");
+    let o = raytracer(&[&scene, &out, &"--strict", &"--quiet"]);
+    let msg = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{msg}");
+    assert!(
+        msg.contains(": pixelsampel: unknown key 'pixelsampel' (did you mean 'pixelsample'?)"),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("scene.shapes[0].material.kdd: unknown key 'kdd' (did you mean 'kd'?)"),
+        "{msg}"
+    );
+    assert!(msg.contains("2 warnings"), "{msg}");
+    assert_eq!(msg.matches("error: ").count(), 3, "{msg}");
+    // No image, no temporary file: the folder holds the scene alone.
+    assert!(!out.exists());
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+
+    // Without --strict the same scene renders, with the warnings.
+    let o = raytracer(&[&scene, &out]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stderr(&o).matches("warning: ").count(), 2, "{}", stderr(&o));
+    std::fs::remove_file(&out).unwrap();
+
+    // study --strict refuses it before writing anything too.
+    let study_dir = dir.path().join("study");
+    let o = raytracer(&[
+        &"study",
+        &scene,
+        &"--quick",
+        &"--strict",
+        &"--out",
+        &study_dir,
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(!study_dir.exists());
+
+    // A scene without warnings renders under --strict.
+    let (dir, clean) = write_scene(SMALL);
+    let out = dir.path().join("out.png");
+    let o = raytracer(&[&clean, &out, &"--strict"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.is_file());
+}
+
+#[test]
+fn the_scenes_samples_per_pixel_are_used_unless_spp_is_given() {
+    let (dir, with_samples) = write_scene(&small_with(r#""pixelsample": 4,"#));
+    let plain = dir.path().join("plain.json");
+    std::fs::write(&plain, SMALL).unwrap();
+    let run = |scene: &Path, name: &str, args: &[&str], threads: &str| {
+        let out = dir.path().join(name);
+        let o = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+            .arg(scene)
+            .arg(&out)
+            .args(args)
+            .env("RAYON_NUM_THREADS", threads)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        (std::fs::read(out).unwrap(), stderr(&o))
+    };
+    let (scene_spp, summary) = run(&with_samples, "a.png", &[], "2");
+    assert!(summary.contains(", 4 spp,"), "{summary}");
+    // The same image as asking for 4 on the command line, on any number of threads.
+    assert_eq!(scene_spp, run(&plain, "b.png", &["--spp", "4"], "2").0);
+    assert_eq!(scene_spp, run(&with_samples, "c.png", &[], "1").0);
+    // The command line wins.
+    let (one, summary) = run(&with_samples, "d.png", &["--spp", "1"], "2");
+    assert!(summary.contains(", 1 spp,"), "{summary}");
+    assert_eq!(one, run(&plain, "e.png", &[], "2").0);
+    assert_ne!(one, scene_spp);
+
+    // A scene-wide light sample count replaces each area light's own (2 random samples here).
+    let light_samples = dir.path().join("light.json");
+    std::fs::write(&light_samples, small_with(r#""lightsample": 7,"#)).unwrap();
+    let seven = dir.path().join("seven.json");
+    std::fs::write(&seven, SMALL.replace(r#""samples": 2"#, r#""samples": 7"#)).unwrap();
+    let (scene_light, _) = run(&light_samples, "f.png", &[], "2");
+    assert_eq!(scene_light, run(&seven, "g.png", &[], "2").0);
+    assert_ne!(scene_light, run(&plain, "h.png", &[], "2").0);
+}

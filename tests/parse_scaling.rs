@@ -37,6 +37,14 @@ fn counted_mesh(n: usize) -> String {
     )
 }
 
+/// A counted mesh (which the loader asks for one key per vertex and face) that also holds `n`
+/// keys the loader does not know: each is compared with the names asked of the mesh.
+fn counted_mesh_with_unknown_keys(n: usize) -> String {
+    let mesh = counted_mesh(n);
+    let at = mesh.find(r#""vertex""#).unwrap();
+    format!("{}{}, {}", &mesh[..at], unknown_keys(n), &mesh[at..])
+}
+
 fn unknown_keys(n: usize) -> String {
     joined(n, |i| format!(r#""unknown{i}": {i}"#))
 }
@@ -111,12 +119,23 @@ fn a_mesh_with_a_key_per_vertex_loads_in_linear_work() {
 
 #[test]
 fn objects_with_many_unknown_keys_load_in_linear_work() {
-    scales_linearly("scene object", scene_with_unknown_keys, |_, s| {
-        assert_eq!(s.primitives.len(), 1)
+    // One warning per unknown key.
+    scales_linearly("scene object", scene_with_unknown_keys, |n, s| {
+        assert_eq!(s.primitives.len(), 1);
+        assert_eq!(s.warnings.len(), n);
     });
-    scales_linearly("shape", shape_with_unknown_keys, |_, s| {
-        assert_eq!(s.primitives.len(), 1)
+    scales_linearly("shape", shape_with_unknown_keys, |n, s| {
+        assert_eq!(s.primitives.len(), 1);
+        assert_eq!(s.warnings.len(), n);
     });
+    scales_linearly(
+        "counted mesh with unknown keys",
+        counted_mesh_with_unknown_keys,
+        |n, s| {
+            assert_eq!(s.primitives.len(), n / 3);
+            assert_eq!(s.warnings.len(), n);
+        },
+    );
 }
 
 #[test]

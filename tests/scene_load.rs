@@ -20,14 +20,14 @@ const CAM_2021: &str = r#""camera": { "type": "pinhole", "width": 40, "height": 
 #[test]
 fn variants_are_told_apart_and_lookat_spellings_differ() {
     // 2021: `lookat` is a direction.
-    let s = load_json(&format!("{{ {CAM_2021} }}"));
+    let s = load_json(&format!(r#"{{ {CAM_2021}, "scene": {{}} }}"#));
     assert_eq!(s.variant, Variant::V2021);
     assert!(close(s.camera.forward, Vec3::Y));
     assert!(close(s.camera.right, Vec3::X)); // forward × up
                                              // CGR: `lookAt` is a target point, and the image x axis is up × forward.
     let s = load_json(
         r#"{ "rendermode": "phong", "camera": { "type": "pinhole", "width": 40, "height": 20, "fov": 30,
-             "position": [1, 2, 3], "lookAt": [1, 5, 3], "upVector": [0, 0, 1], "exposure": 2 } }"#,
+             "position": [1, 2, 3], "lookAt": [1, 5, 3], "upVector": [0, 0, 1], "exposure": 2 }, "scene": {} }"#,
     );
     assert_eq!(s.variant, Variant::Cgr);
     assert!(close(s.camera.forward, Vec3::Y));
@@ -36,11 +36,13 @@ fn variants_are_told_apart_and_lookat_spellings_differ() {
     // CGR camera keys without `rendermode` are CGR too.
     let s = load_json(
         r#"{ "camera": { "width": 4, "height": 4, "fov": 30, "position": [0, 0, 0],
-             "lookAt": [0, 0, -1], "upVector": [0, 1, 0] } }"#,
+             "lookAt": [0, 0, -1], "upVector": [0, 1, 0] }, "scene": {} }"#,
     );
     assert_eq!(s.variant, Variant::Cgr);
     // 2019: no pose: at the origin, looking down −z, +y up.
-    let s = load_json(r#"{ "camera": { "type": "pinhole", "width": 4, "height": 4, "fov": 30 } }"#);
+    let s = load_json(
+        r#"{ "camera": { "type": "pinhole", "width": 4, "height": 4, "fov": 30 }, "scene": {} }"#,
+    );
     assert_eq!(s.variant, Variant::V2019);
     assert_eq!(
         (s.camera.position, s.camera.forward, s.camera.up),
@@ -48,22 +50,28 @@ fn variants_are_told_apart_and_lookat_spellings_differ() {
     );
     // A zero `lookat` direction is read as the point to look at, with a warning.
     let s = load_json(
-        r#"{ "camera": { "width": 4, "height": 4, "fov": 30, "position": [0, 0, 3], "lookat": [0, 0, 0], "up": [0, 1, 0] } }"#,
+        r#"{ "camera": { "width": 4, "height": 4, "fov": 30, "position": [0, 0, 3], "lookat": [0, 0, 0], "up": [0, 1, 0] }, "scene": {} }"#,
     );
     assert!(close(s.camera.forward, -Vec3::Z));
-    assert_eq!(s.warnings.len(), 1);
+    assert_eq!(
+        s.warnings
+            .iter()
+            .filter(|w| w.message.contains("is a direction"))
+            .count(),
+        1
+    );
 }
 
 #[test]
 fn fov_is_vertical_and_hfov_horizontal() {
-    let s = load_json(r#"{ "camera": { "width": 200, "height": 100, "hfov": 90 } }"#);
+    let s = load_json(r#"{ "camera": { "width": 200, "height": 100, "hfov": 90 }, "scene": {} }"#);
     // tan(hfov/2) = aspect · tan(fov_y/2) → fov_y = 2·atan(1/2).
     assert!((s.camera.fov_y - 2.0 * 0.5f32.atan()).abs() < 1e-5);
 }
 
 #[test]
 fn size_overrides_keep_the_aspect_ratio() {
-    let (_d, path) = write_scene(&format!("{{ {CAM_2021} }}"));
+    let (_d, path) = write_scene(&format!(r#"{{ {CAM_2021}, "scene": {{}} }}"#));
     let s = load(
         &path,
         &LoadOptions {

@@ -28,6 +28,22 @@ fn subcommand(args: &[OsString]) -> Option<&'static str> {
         .find(|name| first == name)
 }
 
+/// `--strict`: every warning about `scene` is an error. Prints each as one and fails with their
+/// count; passes a scene without warnings.
+fn strict(scene: &crate::scene::Scene) -> Result<(), String> {
+    let n = scene.warnings.len();
+    if n == 0 {
+        return Ok(());
+    }
+    for w in &scene.warnings {
+        eprintln!("error: {w}");
+    }
+    let s = if n == 1 { "" } else { "s" };
+    Err(format!(
+        "{n} warning{s} about the scene, errors under --strict; nothing written"
+    ))
+}
+
 /// Runs the command line `args` (program name first) and returns the process's exit status.
 pub fn main(args: &[OsString]) -> ExitCode {
     crate::files::output::report_file_size_limit();

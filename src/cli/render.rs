@@ -24,7 +24,7 @@ use super::values;
     name = "raytracer",
     version,
     about = "Renders a coursework JSON scene to a PPM, PNG or EXR image.",
-    after_help = "Exit codes: 0 rendered; 1 the scene or an asset is bad (or the image could not be written); 2 usage error (also: the output is one of the scene's files); 130 interrupted (nothing written).\n\
+    after_help = "Exit codes: 0 rendered; 1 the scene or an asset is bad (or the image could not be written; with --strict, also when the scene has warnings); 2 usage error (also: the output is one of the scene's files); 130 interrupted (nothing written).\n\
                   Output format by extension: .ppm (binary P6), .png (8-bit), .exr (linear 32-bit float, not tone-mapped).\n\
                   Inputs must be regular files (not FIFOs or devices); the image is written atomically and never onto the scene, a texture or a mesh it uses.\n\
                   Image comparison: raytracer compare --help. Benchmarks: raytracer bench --help."
@@ -34,9 +34,10 @@ struct Cli {
     scene: PathBuf,
     /// The image to write: .ppm, .png or .exr.
     output: PathBuf,
-    /// Samples per pixel (stratified). 1 traces one ray through each pixel centre.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
-    spp: u32,
+    /// Samples per pixel (stratified); 1 traces one ray through each pixel centre. Default: the
+    /// scene's own count (`pixelsample` and its spellings), else 1.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    spp: Option<u32>,
     /// Placement of pixel and lens samples: random, jittered or sobol.
     #[arg(long, default_value = "jittered")]
     pixel_sampler: Method,
@@ -96,6 +97,10 @@ struct Cli {
     /// Refuse area lights that take more shadow rays per shading point than this.
     #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_LIGHT_SAMPLES)]
     max_light_samples: u32,
+    /// Refuse scenes that ask for more samples per pixel than this (`pixelsample` and its
+    /// spellings; --spp is not limited by it).
+    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_PIXEL_SAMPLES)]
+    max_pixel_samples: u32,
     /// Refuse scene files larger than this many bytes (checked before reading; the parsed
     /// document takes about ten times the file's size).
     #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_SCENE_BYTES)]
@@ -110,6 +115,9 @@ struct Cli {
     /// No progress bar, no warnings, no summary line.
     #[arg(short, long)]
     quiet: bool,
+    /// Treat every warning about the scene as an error: print them all and write nothing.
+    #[arg(long)]
+    strict: bool,
 }
 
 /// What an interrupted render did not write.
@@ -149,12 +157,15 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         max_bounces: cli.max_bounces,
         max_triangles: cli.max_triangles,
         max_light_samples: cli.max_light_samples,
+        max_pixel_samples: cli.max_pixel_samples,
         max_scene_bytes: cli.max_scene_bytes,
         max_texture_pixels: cli.max_texture_pixels,
         max_mesh_bytes: cli.max_mesh_bytes,
     };
     let scene = load(&cli.scene, &load_options).map_err(|e| Failure::Input(e.to_string()))?;
-    if !cli.quiet {
+    if cli.strict {
+        super::strict(&scene)?;
+    } else if !cli.quiet {
         for w in &scene.warnings {
             eprintln!("warning: {w}");
         }
@@ -167,7 +178,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         return Err(Failure::Interrupted(NOT_WRITTEN));
     }
     let options = RenderOptions {
-        spp: cli.spp,
+        spp: cli.spp.or(scene.pixel_samples).unwrap_or(1),
         pixel_method: cli.sampler.unwrap_or(cli.pixel_sampler),
         seed: cli.seed,
         accel: cli.accel,
@@ -175,7 +186,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         max_depth: cli.max_depth.unwrap_or(u32::MAX),
         trace: crate::integrator::TraceOptions {
             light_method: cli.sampler,
-            light_samples: None,
+            light_samples: scene.light_samples,
             adaptive_lights: cli.adaptive_lights,
             cutoff: cli.adc_bailout,
         },

@@ -91,6 +91,9 @@ struct StudyCli {
     /// Cut-off for --skip-work's adc-bailout runs (between 0 and 1).
     #[arg(long, default_value_t = DEFAULT_CUTOFF, value_parser = values::unit_interval_f32)]
     adc_bailout: f32,
+    /// Treat every warning about the scene as an error: print them all and write nothing.
+    #[arg(long)]
+    strict: bool,
 }
 
 /// Parses the subcommand's command line without running it.
@@ -133,7 +136,15 @@ fn load_scene(cli: &StudyCli) -> Result<crate::scene::Scene, String> {
         height: cli.height,
         ..LoadOptions::default()
     };
-    load(&cli.scene, &options).map_err(|e| e.to_string())
+    let scene = load(&cli.scene, &options).map_err(|e| e.to_string())?;
+    if cli.strict {
+        super::strict(&scene)?;
+    } else {
+        for w in &scene.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
+    Ok(scene)
 }
 
 fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {

@@ -7,11 +7,17 @@
 //! nearest of a fixed set of checkpoints rather than from the start of its line (a file can be one
 //! line with a warning every few bytes). [`work_count`] counts the steps both take, so tests can
 //! check that growth without timing anything.
+//!
+//! Every lookup is also recorded: for each object looked into, which of its members a lookup
+//! returned and which names it was asked for. After a load, [`Node::unread_members`] lists the
+//! members no lookup returned, so that keys the loader does not know can be reported without a
+//! second list of every key (`scene::keys`).
 
 use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
-use std::hash::{BuildHasher, RandomState};
+use std::hash::{BuildHasher, BuildHasherDefault, Hasher, RandomState};
 use std::path::{Path, PathBuf};
+use std::rc::Rc;
 
 use jsonc_parser::ast::{ObjectProp, ObjectPropName, Value};
 use jsonc_parser::common::Ranged;
@@ -28,6 +34,12 @@ const CHECKPOINT_BYTES: usize = 256;
 /// costs less than building an index.
 const LINEAR_LOOKUP_MAX: usize = 16;
 
+/// Most distinct names recorded as asked of one object. The loader asks an object for at most a
+/// few dozen names, except where it asks for one key per element (`v0`, `v1`, … of a counted
+/// mesh); the cap keeps each lookup's record, and each suggestion for an unread key, of bounded
+/// cost there. The names asked first (the fixed keys of the object's kind) are the ones kept.
+const MOST_NAMES_ASKED: usize = 128;
+
 thread_local! {
     static WORK: Cell<u64> = const { Cell::new(0) };
 }
@@ -37,6 +49,11 @@ thread_local! {
 /// grows; take the difference around a load to see how its work grows with the input.
 pub fn work_count() -> u64 {
     WORK.with(Cell::get)
+}
+
+/// Adds `steps` to [`work_count`]: for work done on the document outside this module.
+pub(crate) fn work_count_add(steps: usize) {
+    count_work(steps);
 }
 
 fn count_work(steps: usize) {
@@ -98,6 +115,179 @@ impl NameIndex {
     }
 }
 
+/// A mixing hasher for keys made here from counters (never from positions or text in the file,
+/// which a file could choose to collide; those use the standard library's keyed hash):
+/// the SplitMix64 finaliser (Steele, Lea, Flood, "Fast splittable pseudorandom number
+/// generators", OOPSLA 2014), which spreads consecutive integers over all bits.
+#[derive(Default)]
+struct Mix(u64);
+
+impl Hasher for Mix {
+    fn finish(&self) -> u64 {
+        let mut z = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = self.0.rotate_left(8) ^ u64::from(b);
+        }
+    }
+    fn write_u64(&mut self, n: u64) {
+        self.0 ^= n;
+    }
+    fn write_usize(&mut self, n: usize) {
+        self.0 ^= n as u64;
+    }
+}
+
+type MixMap<K, V> = HashMap<K, V, BuildHasherDefault<Mix>>;
+
+/// Which members of one object lookups returned: a bit per member, the first 64 inline.
+struct Returned {
+    low: u64,
+    rest: Vec<u64>,
+}
+
+impl Returned {
+    fn new(len: usize) -> Returned {
+        Returned {
+            low: 0,
+            rest: vec![0; len.saturating_sub(64).div_ceil(64)],
+        }
+    }
+
+    fn set(&mut self, i: usize) {
+        match i.checked_sub(64) {
+            None => self.low |= 1 << i,
+            Some(j) => self.rest[j / 64] |= 1 << (j % 64),
+        }
+    }
+
+    fn get(&self, i: usize) -> bool {
+        match i.checked_sub(64) {
+            None => self.low >> i & 1 != 0,
+            Some(j) => self.rest[j / 64] >> (j % 64) & 1 != 0,
+        }
+    }
+}
+
+/// What lookups did with one object: the members they returned, and the set of names they
+/// asked for (a state of [`AskedSets`]).
+struct ObjectReads {
+    returned: Returned,
+    asked: u32,
+}
+
+/// Sets of names asked for, shared between objects: objects of one kind are asked the same names
+/// in the same order, so each set is stored once. State 0 is the empty set; every other state is
+/// its parent's set plus one name, at most [`MOST_NAMES_ASKED`] deep.
+struct AskedSets {
+    parent: Vec<u32>,
+    name: Vec<u32>,
+    depth: Vec<u32>,
+    /// `(state << 32) | name` → the state after asking for `name`.
+    next: MixMap<u64, u32>,
+}
+
+impl AskedSets {
+    fn new() -> AskedSets {
+        AskedSets {
+            parent: vec![0],
+            name: vec![u32::MAX],
+            depth: vec![0],
+            next: MixMap::default(),
+        }
+    }
+
+    fn full(&self, state: u32) -> bool {
+        self.depth[state as usize] as usize >= MOST_NAMES_ASKED
+    }
+
+    /// The state after asking `state`'s object for name `id`.
+    fn add(&mut self, state: u32, id: u32) -> u32 {
+        let key = u64::from(state) << 32 | u64::from(id);
+        if let Some(&to) = self.next.get(&key) {
+            return to;
+        }
+        // First time from this state: a name already in the set keeps it (a walk of at most
+        // MOST_NAMES_ASKED steps, once per state and name).
+        let mut at = state;
+        while at != 0 && self.name[at as usize] != id {
+            count_work(1);
+            at = self.parent[at as usize];
+        }
+        let to = if at != 0 {
+            state
+        } else {
+            self.parent.push(state);
+            self.name.push(id);
+            self.depth.push(self.depth[state as usize] + 1);
+            self.name.len() as u32 - 1
+        };
+        self.next.insert(key, to);
+        to
+    }
+
+    /// The names of `state`, in the order first asked.
+    fn names(&self, mut state: u32) -> Vec<u32> {
+        let mut out = Vec::new();
+        while state != 0 {
+            out.push(self.name[state as usize]);
+            state = self.parent[state as usize];
+        }
+        out.reverse();
+        out
+    }
+}
+
+/// Entries in the cache of name positions by address: the keys the loader asks for are mostly
+/// string constants, found there without hashing their text.
+const NAME_CACHE: usize = 256;
+
+/// The names any object was asked for, each once, and their positions.
+struct Names {
+    list: Vec<Box<str>>,
+    index: NameIndex,
+    /// (address, length, position) of recently asked names.
+    by_address: Vec<(usize, usize, u32)>,
+}
+
+impl Names {
+    fn new() -> Names {
+        Names {
+            list: Vec::new(),
+            index: NameIndex::default(),
+            by_address: vec![(0, usize::MAX, 0); NAME_CACHE],
+        }
+    }
+
+    fn id(&mut self, name: &str) -> u32 {
+        let address = name.as_ptr() as usize;
+        let slot = (address >> 3 ^ name.len()) % NAME_CACHE;
+        let (a, len, id) = self.by_address[slot];
+        // The text is compared too: a string built at run time may reuse an address.
+        if a == address && len == name.len() && *self.list[id as usize] == *name {
+            return id;
+        }
+        let list = &self.list;
+        let id = match self.index.find(name, |i| &list[i]) {
+            Some(i) => i as u32,
+            None => {
+                self.index.push(name);
+                self.list.push(name.into());
+                self.list.len() as u32 - 1
+            }
+        };
+        self.by_address[slot] = (address, name.len(), id);
+        id
+    }
+}
+
+/// A [`Node`]'s object has no [`ObjectReads`] slot yet.
+const NO_SLOT: u32 = u32::MAX;
+
 /// The text of a scene file and where its lines start.
 pub struct Source<'t> {
     pub file: PathBuf,
@@ -107,6 +297,12 @@ pub struct Source<'t> {
     checkpoints: Vec<usize>,
     /// Member indexes of the large objects looked into so far, by the object's start offset.
     members: RefCell<HashMap<usize, NameIndex>>,
+    /// What lookups did with each object looked into, and its slot there by the object's start
+    /// offset.
+    reads: RefCell<Vec<ObjectReads>>,
+    slots: RefCell<HashMap<usize, u32>>,
+    asked: RefCell<AskedSets>,
+    names: RefCell<Names>,
 }
 
 impl<'t> Source<'t> {
@@ -127,6 +323,44 @@ impl<'t> Source<'t> {
             line_starts,
             checkpoints,
             members: RefCell::new(HashMap::new()),
+            reads: RefCell::new(Vec::new()),
+            slots: RefCell::new(HashMap::new()),
+            asked: RefCell::new(AskedSets::new()),
+            names: RefCell::new(Names::new()),
+        }
+    }
+
+    /// Records a lookup of `key` in the object of `len` members that starts at byte `start`,
+    /// and the member it returned; `slot` caches the object's place in the records.
+    fn record(
+        &self,
+        slot: &Cell<u32>,
+        start: usize,
+        len: usize,
+        key: &str,
+        returned: Option<usize>,
+    ) {
+        count_work(1);
+        let mut reads = self.reads.borrow_mut();
+        let mut at = slot.get();
+        if at == NO_SLOT {
+            at = *self.slots.borrow_mut().entry(start).or_insert_with(|| {
+                reads.push(ObjectReads {
+                    returned: Returned::new(len),
+                    asked: 0,
+                });
+                reads.len() as u32 - 1
+            });
+            slot.set(at);
+        }
+        let object = &mut reads[at as usize];
+        if let Some(i) = returned {
+            object.returned.set(i);
+        }
+        let mut asked = self.asked.borrow_mut();
+        if !asked.full(object.asked) {
+            let id = self.names.borrow_mut().id(key);
+            object.asked = asked.add(object.asked, id);
         }
     }
 
@@ -206,6 +440,8 @@ pub struct Node<'a, 't> {
     pub value: &'a Value<'t>,
     pub path: String,
     src: &'a Source<'t>,
+    /// The object's place in its source's lookup records, once known.
+    slot: Cell<u32>,
 }
 
 impl<'a, 't> Node<'a, 't> {
@@ -214,6 +450,7 @@ impl<'a, 't> Node<'a, 't> {
             value,
             path: String::new(),
             src,
+            slot: Cell::new(NO_SLOT),
         }
     }
 
@@ -250,6 +487,7 @@ impl<'a, 't> Node<'a, 't> {
             value,
             path,
             src: self.src,
+            slot: Cell::new(NO_SLOT),
         }
     }
 
@@ -274,33 +512,190 @@ impl<'a, 't> Node<'a, 't> {
         let Value::Object(o) = self.value else {
             return None;
         };
+        let found = self.src.member_position(o.start(), &o.properties, key);
+        self.src
+            .record(&self.slot, o.start(), o.properties.len(), key, found);
+        let i = found?;
+        Some(self.child(&o.properties[i].value, key.to_string()))
+    }
+
+    /// The member `key` like [`Node::get`], but unrecorded: the lookup neither marks the member
+    /// as read nor the object as looked into (for a look at an object that may never be used,
+    /// like the `name` of a library material).
+    pub fn peek(&self, key: &str) -> Option<Node<'a, 't>> {
+        let Value::Object(o) = self.value else {
+            return None;
+        };
         let i = self.src.member_position(o.start(), &o.properties, key)?;
         Some(self.child(&o.properties[i].value, key.to_string()))
     }
 
-    /// The first present member among `keys` (spellings of the same concept).
+    /// The first present member among `keys` (spellings of the same concept). The other
+    /// spellings count as asked for, so that a second spelling present beside the first is
+    /// reported as such.
     pub fn get_any(&self, keys: &[&str]) -> Option<Node<'a, 't>> {
-        keys.iter().find_map(|k| self.get(k))
+        let (i, node) = keys
+            .iter()
+            .enumerate()
+            .find_map(|(i, k)| self.get(k).map(|n| (i, n)))?;
+        if let Value::Object(o) = self.value {
+            for k in &keys[i + 1..] {
+                self.src
+                    .record(&self.slot, o.start(), o.properties.len(), k, None);
+            }
+        }
+        Some(node)
     }
 
-    /// Whether any of `keys` is present.
+    /// Marks the members among `keys` as read without reading them: for keys that the loader
+    /// reads only in some modes (a texture in `rendermode: binary`), which are known in all.
+    pub fn mark_read(&self, keys: &[&str]) {
+        for k in keys {
+            let _ = self.get(k);
+        }
+    }
+
+    /// Whether any of `keys` is present. Every one present counts as read: the loader decides
+    /// something from them all.
     pub fn has_any(&self, keys: &[&str]) -> bool {
-        self.get_any(keys).is_some()
+        let mut any = false;
+        for k in keys {
+            any |= self.get(k).is_some();
+        }
+        any
     }
 
-    /// The object's members, in file order.
+    /// Marks every member read: for an object skipped as a whole, with a warning of its own.
+    pub fn mark_all_read(&self) {
+        if let Value::Object(o) = self.value {
+            for (i, p) in o.properties.iter().enumerate() {
+                let key = prop_name(&p.name);
+                self.src
+                    .record(&self.slot, o.start(), o.properties.len(), key, Some(i));
+            }
+        }
+    }
+
+    /// The object's members, in file order (each counts as read).
     pub fn members(&self) -> Vec<(String, Node<'a, 't>)> {
         match self.value {
             Value::Object(o) => o
                 .properties
                 .iter()
-                .map(|p| {
+                .enumerate()
+                .map(|(i, p)| {
                     let k = prop_name(&p.name).to_string();
+                    self.src
+                        .record(&self.slot, o.start(), o.properties.len(), &k, Some(i));
                     (k.clone(), self.child(&p.value, k))
                 })
                 .collect(),
             _ => Vec::new(),
         }
+    }
+
+    /// The members that no lookup returned, in file order, of every object under this value
+    /// that some lookup looked into ([`Node::peek`] does not count). Objects never looked into
+    /// are not searched, nor is anything inside an unread member.
+    ///
+    /// The walk keeps each value's place as a link to its parent and spells out the paths of the
+    /// unread members only, so its cost is linear in the size of the document however deeply it
+    /// nests.
+    pub fn unread_members(&self) -> Vec<Unread<'a, 't>> {
+        #[derive(Clone, Copy)]
+        enum Segment<'a> {
+            Root,
+            Index(usize),
+            Key(&'a str),
+        }
+        let reads = self.src.reads.borrow();
+        let slots = self.src.slots.borrow();
+        let asked_sets = self.src.asked.borrow();
+        let names = self.src.names.borrow();
+        // (parent, segment) of each container on the way; `stack` holds positions in it.
+        let mut places: Vec<(usize, Segment<'a>)> = vec![(0, Segment::Root)];
+        let mut stack: Vec<(&'a Value<'t>, usize)> = vec![(self.value, 0)];
+        // (byte offset of the member, place of its object, key, value, names asked of the object)
+        type Found<'a, 't> = (usize, usize, &'a str, &'a Value<'t>, Rc<[Box<str>]>);
+        let mut found: Vec<Found<'a, 't>> = Vec::new();
+        while let Some((value, place)) = stack.pop() {
+            count_work(1);
+            match value {
+                Value::Array(a) => {
+                    for (i, v) in a.elements.iter().enumerate().rev() {
+                        if matches!(v, Value::Array(_) | Value::Object(_)) {
+                            places.push((place, Segment::Index(i)));
+                            stack.push((v, places.len() - 1));
+                        }
+                    }
+                }
+                Value::Object(o) => {
+                    let Some(&at) = slots.get(&o.start()) else {
+                        continue;
+                    };
+                    let r = &reads[at as usize];
+                    let mut asked: Option<Rc<[Box<str>]>> = None;
+                    for (i, p) in o.properties.iter().enumerate().rev() {
+                        count_work(1);
+                        let key = prop_name(&p.name);
+                        if r.returned.get(i) {
+                            if matches!(p.value, Value::Array(_) | Value::Object(_)) {
+                                places.push((place, Segment::Key(key)));
+                                stack.push((&p.value, places.len() - 1));
+                            }
+                        } else {
+                            let asked = asked
+                                .get_or_insert_with(|| {
+                                    asked_sets
+                                        .names(r.asked)
+                                        .iter()
+                                        .map(|&id| names.list[id as usize].clone())
+                                        .collect()
+                                })
+                                .clone();
+                            found.push((p.start(), place, key, &p.value, asked));
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        found.sort_by_key(|f| f.0);
+        found
+            .into_iter()
+            .map(|(_, place, key, value, asked)| {
+                let mut segments = vec![Segment::Key(key)];
+                let mut at = place;
+                while at != 0 {
+                    let (parent, segment) = places[at];
+                    segments.push(segment);
+                    at = parent;
+                }
+                let mut path = self.path.clone();
+                for segment in segments.iter().rev() {
+                    match segment {
+                        Segment::Root => {}
+                        Segment::Index(i) => path.push_str(&format!("[{i}]")),
+                        Segment::Key(k) => {
+                            if !path.is_empty() {
+                                path.push('.');
+                            }
+                            path.push_str(k);
+                        }
+                    }
+                }
+                Unread {
+                    key,
+                    node: Node {
+                        value,
+                        path,
+                        src: self.src,
+                        slot: Cell::new(NO_SLOT),
+                    },
+                    asked,
+                }
+            })
+            .collect()
     }
 
     /// The elements of an array.
@@ -422,6 +817,16 @@ impl<'a, 't> Node<'a, 't> {
     }
 }
 
+/// A member that no lookup returned, in an object that some lookup looked into.
+pub struct Unread<'a, 't> {
+    pub key: &'a str,
+    /// The member's value, with the member's path.
+    pub node: Node<'a, 't>,
+    /// The distinct names lookups asked the member's object for, in the order first asked
+    /// (the first [`MOST_NAMES_ASKED`] of them).
+    pub asked: Rc<[Box<str>]>,
+}
+
 fn prop_name<'x>(name: &'x ObjectPropName<'_>) -> &'x str {
     match name {
         ObjectPropName::String(s) => s.value.as_ref(),
@@ -519,6 +924,35 @@ mod tests {
         assert_eq!(root.get("k47").unwrap().path, "k47");
         assert!(root.get("k48").is_none());
         assert!(root.get("k").is_none());
+    }
+
+    #[test]
+    fn unread_members_of_large_objects_and_the_names_asked_once_each() {
+        let mut text = String::from("{\"inner\": {\"x\": 1, \"y\": 2}, ");
+        for i in 0..100 {
+            text.push_str(&format!("\"k{i}\": {i}, "));
+        }
+        text.push_str("\"skipped\": {\"z\": 3}}");
+        let src = Source::new(Path::new("s.json"), &text);
+        let v = src.parse().unwrap();
+        let root = Node::root(&v, &src);
+        for key in ["k70", "nope", "k70", "k3", "nope"] {
+            let _ = root.get(key);
+        }
+        let inner = root.get("inner").unwrap();
+        assert!(inner.peek("x").is_some());
+        assert!(inner.get("y").is_some());
+        let unread = root.unread_members();
+        let paths: Vec<&str> = unread.iter().map(|u| u.node.path.as_str()).collect();
+        // Every k but k3 and k70, in file order, then `skipped` (not searched inside); in
+        // `inner`, `x` was only peeked at.
+        assert_eq!(paths.len(), 1 + 98 + 1);
+        assert_eq!(paths[0], "inner.x");
+        assert_eq!(paths[1], "k0");
+        assert!(!paths.contains(&"k3") && !paths.contains(&"k70"));
+        assert_eq!(paths[99], "skipped");
+        let asked: Vec<&str> = unread[1].asked.iter().map(|a| &**a).collect();
+        assert_eq!(asked, ["k70", "nope", "k3", "inner"]);
     }
 
     #[test]

@@ -5,6 +5,7 @@
 
 pub mod error;
 pub mod json;
+pub mod keys;
 mod lights;
 pub mod load;
 pub mod mesh_file;
@@ -59,6 +60,12 @@ pub struct Scene {
     pub ambient: Vec3,
     /// How mirrors combine reflection with their own shading.
     pub reflection: Reflection,
+    /// Samples per pixel the file asks for (`pixelsample` and other spellings); the render takes
+    /// them unless told otherwise (`--spp`).
+    pub pixel_samples: Option<u32>,
+    /// Shadow rays per shading point for every area light, if the file sets them for all at once
+    /// (`lightsample` and other spellings).
+    pub light_samples: Option<u32>,
     pub lights: Vec<Light>,
     pub primitives: Vec<Primitive>,
     pub materials: Vec<Material>,
