@@ -360,6 +360,14 @@ const CASES: &[(&str, &[&str])] = &[
         "no-scene.json",
         &[":1:1:", "(root)", "nothing to render", "'scene'"],
     ),
+    (
+        "arealight-shapeid-infinite-plane.json",
+        &[
+            "scene.lightsources[0].shapeid",
+            "infinite plane",
+            "no finite area",
+        ],
+    ),
 ];
 
 #[test]

@@ -2,8 +2,13 @@
 //! rendered at 64 pixels wide, 1 sample per pixel, at most 2 bounces. None may panic; each either
 //! renders or fails with a clean error. Of the scenes whose assets are all in the corpus, at least
 //! 95% must render, and a scene whose assets are missing must fail by naming the missing file.
+//!
+//! The test prints each scene's warnings and compares them, and whether it rendered, with
+//! `tests/corpus_expected.tsv`: a scene that stops rendering, or gains a warning the file does not
+//! list, fails the test. A scene that loses one, or starts rendering, is reported; rewrite the list
+//! with `RAYTRACER_UPDATE_CORPUS=1 cargo test --release --test corpus` after looking at the change.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Component, Path, PathBuf};
 
@@ -96,6 +101,7 @@ fn every_corpus_scene_renders_or_fails_cleanly() {
     let mut panicked = Vec::new();
     let mut warnings = 0usize;
     let mut complete = 0usize;
+    let mut outcomes: BTreeMap<String, Outcome> = BTreeMap::new();
     for e in &entries {
         let assets_present = e.refs.iter().all(|(_, a)| a.starts_with("assets/"));
         if assets_present {
@@ -122,11 +128,17 @@ fn every_corpus_scene_renders_or_fails_cleanly() {
                 },
             )
             .unwrap();
-            Ok::<_, raytracer::scene::SceneError>((scene.warnings.len(), out))
+            let warned: Vec<String> = scene
+                .warnings
+                .iter()
+                .map(|w| format!("{}: {}", w.location.path, w.message))
+                .collect();
+            Ok::<_, raytracer::scene::SceneError>((warned, out))
         }));
         match result {
             Ok(Ok((w, out))) => {
-                warnings += w;
+                warnings += w.len();
+                outcomes.insert(e.file.clone(), Outcome::Rendered(w));
                 assert_eq!(out.film.width, 64);
                 assert!(out.film.pixels.iter().all(|p| p.is_finite()), "{}", e.file);
                 rendered.push(e.file.clone());
@@ -146,6 +158,7 @@ fn every_corpus_scene_renders_or_fails_cleanly() {
                     e.file
                 );
                 failed.insert(e.file.clone(), (assets_present, msg));
+                outcomes.insert(e.file.clone(), Outcome::Failed);
             }
             Err(_) => panicked.push(e.file.clone()),
         }
@@ -168,6 +181,7 @@ fn every_corpus_scene_renders_or_fails_cleanly() {
         );
     }
     assert!(panicked.is_empty(), "panicked: {panicked:?}");
+    compare_with_expected(&outcomes);
     let rendered_complete = complete - complete_failed.len();
     println!("corpus: {rendered_complete} of {complete} scenes with all assets present rendered");
     assert!(
@@ -182,4 +196,109 @@ fn every_corpus_scene_renders_or_fails_cleanly() {
             );
         }
     }
+}
+
+/// What loading and rendering one scene gave.
+#[derive(Debug, PartialEq)]
+enum Outcome {
+    /// Rendered, with these warnings (`json.path: message`).
+    Rendered(Vec<String>),
+    /// A clean error.
+    Failed,
+}
+
+const EXPECTED: &str = "tests/corpus_expected.tsv";
+
+/// The expected outcomes: `scene<TAB>rendered`, `scene<TAB>error`, and one
+/// `scene<TAB>warning<TAB>json.path: message` line per warning.
+fn read_expected() -> BTreeMap<String, (bool, BTreeSet<String>)> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(EXPECTED);
+    let text = std::fs::read_to_string(&path).unwrap_or_default();
+    let mut out: BTreeMap<String, (bool, BTreeSet<String>)> = BTreeMap::new();
+    for line in text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.is_empty())
+    {
+        let mut cols = line.splitn(3, '\t');
+        let (Some(file), Some(kind)) = (cols.next(), cols.next()) else {
+            panic!("{EXPECTED}: bad line {line:?}");
+        };
+        let entry = out.entry(file.to_string()).or_default();
+        match (kind, cols.next()) {
+            ("rendered", None) => entry.0 = true,
+            ("error", None) => entry.0 = false,
+            ("warning", Some(w)) => {
+                entry.1.insert(w.to_string());
+            }
+            _ => panic!("{EXPECTED}: bad line {line:?}"),
+        }
+    }
+    out
+}
+
+fn write_expected(outcomes: &BTreeMap<String, Outcome>) {
+    let mut text = String::from(
+        "# What tests/corpus.rs expects of each corpus scene: rendered or error, and each warning\n\
+         # (json.path: message). Rewritten by RAYTRACER_UPDATE_CORPUS=1.\n",
+    );
+    for (file, outcome) in outcomes {
+        match outcome {
+            Outcome::Failed => text += &format!("{file}\terror\n"),
+            Outcome::Rendered(warnings) => {
+                text += &format!("{file}\trendered\n");
+                let unique: BTreeSet<&String> = warnings.iter().collect();
+                for w in unique {
+                    text += &format!("{file}\twarning\t{}\n", w.replace(['\t', '\n'], " "));
+                }
+            }
+        }
+    }
+    std::fs::write(Path::new(env!("CARGO_MANIFEST_DIR")).join(EXPECTED), text)
+        .expect("expected outcomes written");
+}
+
+/// Prints each scene's warnings, and fails on a scene that stopped rendering or gained a
+/// warning since `tests/corpus_expected.tsv` was written.
+fn compare_with_expected(outcomes: &BTreeMap<String, Outcome>) {
+    if std::env::var_os("RAYTRACER_UPDATE_CORPUS").is_some_and(|v| v == "1") {
+        write_expected(outcomes);
+        println!("corpus: rewrote {EXPECTED}");
+        return;
+    }
+    let expected = read_expected();
+    let mut worse = Vec::new();
+    let mut better = Vec::new();
+    for (file, outcome) in outcomes {
+        let (was_rendered, was_warned) = expected.get(file).cloned().unwrap_or_default();
+        let known = expected.contains_key(file);
+        match outcome {
+            Outcome::Failed if was_rendered => worse.push(format!("{file}: no longer renders")),
+            Outcome::Failed => {}
+            Outcome::Rendered(warnings) => {
+                println!("  {file}: {} warning(s)", warnings.len());
+                for w in warnings {
+                    println!("      {w}");
+                    if !was_warned.contains(w) {
+                        worse.push(format!("{file}: new warning: {w}"));
+                    }
+                }
+                if known && !was_rendered {
+                    better.push(format!("{file}: renders now"));
+                }
+                for w in &was_warned {
+                    if !warnings.contains(w) {
+                        better.push(format!("{file}: no longer warns: {w}"));
+                    }
+                }
+            }
+        }
+    }
+    for b in &better {
+        println!("  better than {EXPECTED}: {b}");
+    }
+    assert!(
+        worse.is_empty(),
+        "worse than {EXPECTED} (rewrite it with RAYTRACER_UPDATE_CORPUS=1 if intended):\n{}",
+        worse.join("\n")
+    );
 }

@@ -201,12 +201,23 @@ impl Emitters {
                 None
             };
             let Some(light) = light else {
+                let kind = if matches!(
+                    prims,
+                    [Primitive {
+                        shape: Shape::Plane(_),
+                        ..
+                    }]
+                ) {
+                    "an infinite plane, which has no finite area to sample".to_string()
+                } else {
+                    format!("a '{}'", shape.kind)
+                };
                 return Err(invalid(
                     &w.at,
                     format!(
-                        "the shape '{}' ({}) is a '{}'; only a sphere, a triangle or a quad \
-                         ('plane') can be an area light",
-                        w.id, shape.at.path, shape.kind
+                        "the shape '{}' ({}) is {kind}; only a sphere, a triangle or a quad \
+                         (a 'plane' with corners) can be an area light",
+                        w.id, shape.at.path
                     ),
                 ));
             };

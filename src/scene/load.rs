@@ -393,6 +393,15 @@ impl<'o> Loader<'o> {
             Some(n) => match n.str()?.to_ascii_lowercase().as_str() {
                 "binary" => RenderMode::Binary,
                 "phong" => RenderMode::Phong,
+                "pathtrace" | "pathtracer" | "pathtracing" | "path" | "pt" => {
+                    self.warn(
+                        &n,
+                        "this file asks for path tracing, which is not implemented: rendered \
+                         with phong (Whitted ray tracing: direct light, mirrors, glass; no \
+                         indirect light)",
+                    );
+                    RenderMode::Phong
+                }
                 other => {
                     self.warn(
                         &n,
