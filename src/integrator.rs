@@ -355,12 +355,11 @@ impl<'a> Tracer<'a> {
                 if s % SHADOW_RAYS_PER_CANCEL_CHECK == 0 && self.cancelled() {
                     return color;
                 }
-                let u = if count == 1 {
-                    Vec2::splat(0.5)
+                let sample = if count == 1 {
+                    light.sample_one(hit.point)
                 } else {
-                    light_key.set_point(method, 0, s, count)
+                    light.sample(hit.point, light_key.set_point(method, 0, s, count))
                 };
-                let sample = light.sample(hit.point, u);
                 let to_light = sample.position - hit.point;
                 if to_light.dot(n) <= 0.0 {
                     continue; // the light is behind the side we see: no shadow ray needed

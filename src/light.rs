@@ -12,8 +12,8 @@
 //! Fall-off ([`Falloff`]) is inverse-square in the 2019 and 2021–23 variants. A light with
 //! `is`/`id` (2021–23) gives the irradiance `I / (4π d²)` — the point source of power `I` —
 //! which is what the official reference render shows; a light with `intensity` (2019) gives
-//! `I / d²`. CGR lights do not fall off, unless they give OpenGL-style attenuation
-//! coefficients, `I / (kc + kl·d + kq·d²)`:
+//! `I / d²`; a CGR light with `intensity` does not fall off at all. A light of any variant that
+//! gives OpenGL-style attenuation coefficients falls off as `I / (kc + kl·d + kq·d²)`:
 //! ```json
 //! { "type": "pointlight", "position": [0, 1, 0.5], "intensity": [0.75, 0.75, 0.75],
 //!   "kc": 1.0, "kl": 0.22, "kq": 0.2 }
@@ -192,6 +192,27 @@ impl Light {
                 cumulative_area,
                 ..
             } => sample_triangles(triangles, cumulative_area, from, u),
+        }
+    }
+
+    /// The sample of a light that gets a single shadow ray: its middle. That is the sample at
+    /// `(½, ½)` for every light but shape triangles, where `(½, ½)` falls on a corner of one of
+    /// them; theirs is the centroid by area.
+    pub fn sample_one(&self, from: Vec3) -> LightSample {
+        match self {
+            Light::Triangles {
+                triangles,
+                cumulative_area,
+                ..
+            } => {
+                let total = cumulative_area.last().copied().unwrap_or(0.0);
+                let normal = triangles
+                    .first()
+                    .map(|t| (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero())
+                    .unwrap_or(Vec3::ZERO);
+                flat_sample(from, self.center(), normal, total)
+            }
+            _ => self.sample(from, Vec2::splat(0.5)),
         }
     }
 

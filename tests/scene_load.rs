@@ -399,3 +399,27 @@ fn cgr_lights_do_not_fall_off_and_the_scene_has_an_ambient_light() {
     assert_eq!(s.reflection, Reflection::Added);
     assert_eq!(s.display_exposure(ToneMap::Linear), s.exposure);
 }
+
+#[test]
+fn material_keys_on_the_shape_a_diffuse_texture_and_a_lens_size() {
+    let tex = repo().join("textures/checker.png");
+    let s = load_json(&format!(
+        r#"{{ "camera": {{ "type": "thinlens", "width": 4, "height": 4, "fov": 30, "position": [0, 0, 0],
+               "lookat": [0, 0, -1], "up": [0, 1, 0], "focusdistance": 4, "size": 0.05 }},
+             "scene": {{ "shapes": [
+               {{ "type": "sphere", "center": [0, 0, -3], "radius": 1, "color": [1, 0, 0], "reflectivity": 0.5 }},
+               {{ "type": "sphere", "center": [0, 0, -6], "radius": 1, "material": {{ "diffuse": "{}" }} }},
+               {{ "type": "sphere", "center": [0, 0, -9], "radius": 1, "material": {{ "diffuse": [0, 0, 1] }} }} ] }} }}"#,
+        tex.display()
+    ));
+    // A shape without a `material` carries its own keys.
+    assert_eq!(s.materials[0].diffuse, Vec3::new(1.0, 0.0, 0.0));
+    assert_eq!(s.materials[0].kr, 0.5);
+    // `diffuse` is a texture when it is a file name, a colour otherwise.
+    assert!(s.materials[1].texture.is_some());
+    assert_eq!(s.materials[2].diffuse, Vec3::new(0.0, 0.0, 1.0));
+    assert!(s.materials[2].texture.is_none());
+    // A lens `size` is its diameter.
+    assert_eq!(s.camera.lens.map(|l| l.radius), Some(0.025));
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+}

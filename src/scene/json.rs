@@ -555,6 +555,12 @@ impl<'a, 't> Node<'a, 't> {
         }
     }
 
+    /// Whether any of `keys` is present, without counting any as read (for choosing between
+    /// forms whose keys are then read by the form chosen).
+    pub fn contains_any(&self, keys: &[&str]) -> bool {
+        keys.iter().any(|k| self.peek(k).is_some())
+    }
+
     /// Whether any of `keys` is present. Every one present counts as read: the loader decides
     /// something from them all.
     pub fn has_any(&self, keys: &[&str]) -> bool {

@@ -26,7 +26,7 @@ use super::json::{work_count_add, Node};
 /// - accelerator switches (`--accel` chooses here): `bvh`, `use_bvh`, `usebvh`, `accelerator`;
 /// - the output image (given on the command line): `output`;
 /// - a texture's size, read from the image itself: `tWidth`, `tHeight`, and `width`/`height` in
-///   a `texture` object.
+///   a `texture` object or a `textures` library entry.
 pub const HARMLESS: &[&str] = &[
     "name",
     "id",
@@ -45,6 +45,8 @@ pub const HARMLESS: &[&str] = &[
     "theight",
     "texture.width",
     "texture.height",
+    "textures.width",
+    "textures.height",
 ];
 
 /// Unknown keys after this many distinct ones get no suggestion: each suggestion compares the key
@@ -70,8 +72,8 @@ pub fn is_harmless(parent: Option<&str>, key: &str) -> bool {
         })
 }
 
-/// The key whose value holds the member at `path` (`texture` for `scene.shapes[0].texture.width`
-/// and for `textures[2].width`), if any.
+/// The key whose value holds the member at `path` (`texture` for `scene.shapes[0].texture.width`,
+/// `textures` for `textures[2].width`), if any.
 fn parent_key<'p>(path: &'p str, key: &str) -> Option<&'p str> {
     let mut holder = path.strip_suffix(key)?.strip_suffix('.')?;
     while holder.ends_with(']') {

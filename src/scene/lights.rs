@@ -22,6 +22,7 @@
 //! mesh, a box or a cylinder would shine through itself, since its own primitives never block its
 //! shadow rays.
 
+use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
 use super::error::{Location, SceneError, Warning};
@@ -139,13 +140,19 @@ impl Emitters {
         primitives: &[Primitive],
         warnings: &mut Vec<Warning>,
     ) -> Result<(), SceneError> {
-        let mut skipped = Vec::new();
+        // Each id's first shape and how many shapes have it, in one pass (a scene can name
+        // hundreds of thousands of shapes).
+        let mut by_id: HashMap<&str, (usize, usize)> = HashMap::new();
+        for (i, s) in self.shapes.iter().enumerate() {
+            by_id.entry(s.id.as_str()).or_insert((i, 0)).1 += 1;
+        }
+        let mut skipped = HashSet::new();
         for w in &self.wanted {
-            let mut matches = self.shapes.iter().filter(|s| s.id == w.id);
-            let Some(shape) = matches.next() else {
+            let Some(&(first, count)) = by_id.get(w.id.as_str()) else {
                 return Err(invalid(&w.at, self.no_such_id(&w.id)));
             };
-            if matches.next().is_some() {
+            let shape = &self.shapes[first];
+            if count > 1 {
                 warnings.push(Warning {
                     location: w.at.clone(),
                     message: format!(
@@ -163,7 +170,7 @@ impl Emitters {
                         w.id, shape.at.path
                     ),
                 });
-                skipped.push(w.light);
+                skipped.insert(w.light);
                 continue;
             }
             let light = if SPHERE_TYPES.contains(&shape.kind.as_str()) {
@@ -235,12 +242,13 @@ impl Emitters {
 
     /// The message for a `shapeid` that names no shape: the ids there are.
     fn no_such_id(&self, id: &str) -> String {
-        let mut ids: Vec<String> = Vec::new();
-        for s in &self.shapes {
-            if !ids.contains(&s.id) {
-                ids.push(s.id.clone());
-            }
-        }
+        let mut seen = HashSet::new();
+        let ids: Vec<&str> = self
+            .shapes
+            .iter()
+            .map(|s| s.id.as_str())
+            .filter(|id| seen.insert(*id))
+            .collect();
         let listed = if ids.is_empty() {
             "no shape has an 'id'".to_string()
         } else {

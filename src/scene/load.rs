@@ -199,7 +199,9 @@ const LIGHT_SAMPLE_KEYS: &[&str] = &["lightsample", "shadow samples", "spp", "sa
 /// A thin-lens camera's lens radius.
 const LENS_RADIUS_KEYS: &[&str] = &["lensRadius", "lensradius", "lens_radius", "radius"];
 /// A thin-lens camera's lens diameter.
-const LENS_DIAMETER_KEYS: &[&str] = &["aperture", "aperture_size", "diameter", "ap", "d"];
+/// `size` is the side of the square aperture of one renderer (TsFreddie's jittered lens sampler
+/// spreads samples over `[−size/2, size/2]²`), read as the diameter of our round one.
+const LENS_DIAMETER_KEYS: &[&str] = &["aperture", "aperture_size", "diameter", "ap", "d", "size"];
 /// The lens diameter at the top level.
 const ROOT_DIAMETER_KEYS: &[&str] = &["aperture"];
 /// A thin-lens camera's focus distance.
@@ -286,7 +288,8 @@ struct Loader<'o> {
     base: PathBuf,
     warnings: Vec<Warning>,
     textures: Vec<Texture>,
-    texture_index: HashMap<PathBuf, u32>,
+    /// Textures loaded so far, by file and uv offset (the offset's bits): each pair is stored once.
+    texture_index: HashMap<(PathBuf, [u32; 2]), u32>,
     materials: Vec<Material>,
     meshes: Vec<Mesh>,
     primitives: Vec<Primitive>,
@@ -1185,8 +1188,8 @@ impl<'o> Loader<'o> {
             }
             "plane" | "planarquad" | "planerquad" | "quad" | "rectangle" => {
                 let has_corners =
-                    s.has_any(&["v0", "v1", "point1", "p0", "points", "vertices", "corner1"]);
-                if s.has_any(&["normal", "distance"]) && !has_corners {
+                    s.contains_any(&["v0", "v1", "point1", "p0", "points", "vertices", "corner1"]);
+                if s.contains_any(&["normal", "distance"]) && !has_corners {
                     let plane = infinite_plane(s)?;
                     self.primitives.push(Primitive {
                         shape: Shape::Plane(plane),
@@ -1196,7 +1199,7 @@ impl<'o> Loader<'o> {
                 }
                 let p = if let (Some(a), Some(b)) = (s.get("corner1"), s.get("corner2")) {
                     axis_rectangle(s, a.vec3()?, b.vec3()?)?
-                } else if !has_corners && s.has_any(&["center", "centre"]) {
+                } else if !has_corners && s.contains_any(&["center", "centre"]) {
                     centred_rectangle(s)?
                 } else {
                     self.corners(s, 4)?
@@ -1329,34 +1332,15 @@ impl<'o> Loader<'o> {
     }
 
     fn mesh(&mut self, s: &Node, material: u32) -> Result<(), SceneError> {
-        if s.get_any(&[
-            "mPath",
-            "plyPath",
-            "modelpath",
-            "model",
-            "path",
-            "file",
-            "filename",
-        ])
-        .is_none()
-            && poly_sphere::applies(s)
-        {
-            for m in poly_sphere::read(s)? {
+        if !s.contains_any(MESH_FILE_KEYS) && poly_sphere::applies(s) {
+            let budget = self.options.max_triangles.saturating_sub(self.triangles);
+            for m in poly_sphere::read(s, budget)? {
                 let uv = m.uvs.map_or(MeshUv::Strip, MeshUv::PerVertex);
                 self.add_mesh(s, m.positions, m.normals, uv, m.faces, material)?;
             }
             return Ok(());
         }
-        let file_keys = [
-            "mPath",
-            "plyPath",
-            "modelpath",
-            "model",
-            "path",
-            "file",
-            "filename",
-        ];
-        let mut data = if let Some(fnode) = s.get_any(&file_keys) {
+        let mut data = if let Some(fnode) = s.get_any(MESH_FILE_KEYS) {
             let rel = fnode.str()?;
             let path = self.resolve(&fnode, rel)?;
             let limits = MeshLimits {
@@ -1580,7 +1564,8 @@ impl<'o> Loader<'o> {
         libraries: &mut Libraries,
     ) -> Result<u32, SceneError> {
         let mut m = Material::default();
-        let mut node = s.get("material");
+        // A shape without a `material` may carry the material's keys itself (as some files do).
+        let mut node = s.get("material").or_else(|| Some(s.clone()));
         if let Some(named) = node.as_ref().and_then(|n| n.str().ok()) {
             match libraries.materials.find(named) {
                 Some((_, def)) => node = Some(def.clone()),
@@ -1634,6 +1619,8 @@ impl<'o> Loader<'o> {
                 "colour",
             ]) {
                 m.diffuse = c.color()?;
+            } else if let Some(c) = n.get("diffuse").filter(|c| c.str().is_err()) {
+                m.diffuse = c.color()?; // `diffuse` as a string is a texture (below)
             }
             if let Some(c) = n.get_any(&["specularcolor", "specularcolour", "specular_color"]) {
                 m.specular = c.color()?;
@@ -1687,10 +1674,16 @@ impl<'o> Loader<'o> {
         node.iter()
             .chain([s])
             .for_each(|n| n.mark_read(&TEXTURE_KEYS)); // known in every mode
+        if let Some(n) = &node {
+            n.mark_read(&["diffuse"]);
+        }
         if mode == RenderMode::Phong {
             let tex_node = node
                 .as_ref()
-                .and_then(|n| n.get_any(&TEXTURE_KEYS))
+                .and_then(|n| {
+                    n.get_any(&TEXTURE_KEYS)
+                        .or_else(|| n.get("diffuse").filter(|d| d.str().is_ok()))
+                })
                 .or_else(|| s.get_any(&TEXTURE_KEYS));
             if let Some(t) = tex_node {
                 m.texture = self.texture(&t, libraries)?;
@@ -1782,14 +1775,17 @@ impl<'o> Loader<'o> {
     /// once per file and offset.
     fn image_texture(&mut self, node: &Node, rel: &str, offset: Vec2) -> Result<u32, SceneError> {
         let path = self.resolve(node, rel)?;
-        if let Some(&i) = self.texture_index.get(&path) {
-            let base = &self.textures[i as usize];
-            if base.offset == offset {
-                return Ok(i);
-            }
-            let moved = base.clone().with_offset(offset);
+        let key = (path.clone(), [offset.x.to_bits(), offset.y.to_bits()]);
+        if let Some(&i) = self.texture_index.get(&key) {
+            return Ok(i);
+        }
+        // The same file under another offset: a copy of its texels, not a second read.
+        if let Some((_, &i)) = self.texture_index.iter().find(|((p, _), _)| *p == path) {
+            let moved = self.textures[i as usize].clone().with_offset(offset);
             self.textures.push(moved);
-            return Ok(self.textures.len() as u32 - 1);
+            let i = self.textures.len() as u32 - 1;
+            self.texture_index.insert(key, i);
+            return Ok(i);
         }
         let limits = ReadLimits {
             max_pixels: self.options.max_texture_pixels,
@@ -1802,7 +1798,7 @@ impl<'o> Loader<'o> {
         }
         self.textures.push(tex.with_offset(offset));
         let i = self.textures.len() as u32 - 1;
-        self.texture_index.insert(path, i);
+        self.texture_index.insert(key, i);
         Ok(i)
     }
 
@@ -1847,6 +1843,17 @@ impl<'o> Loader<'o> {
         )))
     }
 }
+
+/// The keys that name a mesh file.
+const MESH_FILE_KEYS: &[&str] = &[
+    "mPath",
+    "plyPath",
+    "modelpath",
+    "model",
+    "path",
+    "file",
+    "filename",
+];
 
 const TEXTURE_KEYS: [&str; 7] = [
     "tPath",
@@ -1932,8 +1939,11 @@ fn infinite_plane(s: &Node) -> Result<Plane, SceneError> {
         return Err(nn.error("the plane's normal must not be zero"));
     }
     let len = normal.length();
-    if !len.is_finite() {
-        return Err(nn.error("the plane's normal is too long to normalise"));
+    if !(len.is_finite() && len > 0.0 && (normal / len).is_finite()) {
+        return Err(nn.error(format!(
+            "the plane's normal [{}, {}, {}] is too long or too short to normalise",
+            normal.x, normal.y, normal.z
+        )));
     }
     let distance = required(s, &["distance"])?.f32()?;
     Ok(Plane::new(normal, distance))

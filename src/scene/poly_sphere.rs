@@ -26,13 +26,21 @@ pub const MAX_COUNT: u32 = 256;
 /// Whether `s` is written in this form: none of the vertex keys of an inline mesh, and the
 /// count `n` with a centre key.
 pub fn applies(s: &Node) -> bool {
-    s.get("n").is_some()
-        && s.has_any(&["locX", "locY", "locZ"])
-        && !s.has_any(&["vertices", "vs", "vertex", "points", "triangles"])
+    s.peek("n").is_some()
+        && s.contains_any(&["locX", "locY", "locZ"])
+        && !s.contains_any(&["vertices", "vs", "vertex", "points", "triangles"])
 }
 
-/// Reads the form and builds its meshes, one [`MeshData`] per sphere.
-pub fn read(s: &Node) -> Result<Vec<MeshData>, SceneError> {
+/// Triangles of [`uv_sphere`] with `divisions` bands: a row of `d` at each pole, `2d` in each of
+/// the `d − 2` rows between.
+pub fn triangle_count(divisions: u32) -> u64 {
+    let d = u64::from(divisions.max(3));
+    2 * d * d - 2 * d
+}
+
+/// Reads the form and builds its meshes, one [`MeshData`] per sphere, unless they would hold
+/// more than `max_triangles` (checked before anything is built).
+pub fn read(s: &Node, max_triangles: usize) -> Result<Vec<MeshData>, SceneError> {
     let coord = |k: &str| -> Result<f32, SceneError> {
         s.get(k)
             .map(|n| n.f32())
@@ -54,6 +62,14 @@ pub fn read(s: &Node) -> Result<Vec<MeshData>, SceneError> {
     if count == 0 || count > MAX_COUNT {
         return Err(count_node.error(format!(
             "the number of spheres must be between 1 and {MAX_COUNT}, found {count}"
+        )));
+    }
+    let total: u64 = (0..count)
+        .map(|k| triangle_count(FIRST_DIVISIONS + k))
+        .sum();
+    if total > max_triangles as u64 {
+        return Err(count_node.error(format!(
+            "{count} spheres make {total} triangles, over the scene's limit (raise it with --max-triangles)"
         )));
     }
     Ok((0..count)
@@ -105,6 +121,14 @@ pub fn uv_sphere(center: Vec3, radius: f32, divisions: u32) -> MeshData {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn triangle_count_is_what_uv_sphere_builds() {
+        for d in [1, 3, 5, 6, 17, 40] {
+            let m = uv_sphere(Vec3::ZERO, 1.0, d);
+            assert_eq!(m.faces.len() as u64, triangle_count(d), "divisions {d}");
+        }
+    }
 
     #[test]
     fn vertices_lie_on_the_sphere_and_faces_close_it() {

@@ -57,9 +57,10 @@ impl Affine {
 /// `(sin, cos)` of an angle in degrees, exact at multiples of 90° (so that a quarter turn maps
 /// axis-aligned geometry onto axis-aligned geometry, bit for bit).
 pub fn sin_cos_degrees(deg: f32) -> (f32, f32) {
+    // `rem_euclid` can round a tiny negative angle up to exactly 360: fold that back to 0.
     let turn = deg.rem_euclid(360.0);
     if turn.fract() == 0.0 && (turn as u32).is_multiple_of(90) {
-        return match turn as u32 {
+        return match turn as u32 % 360 {
             0 => (0.0, 1.0),
             90 => (1.0, 0.0),
             180 => (0.0, -1.0),
@@ -161,6 +162,14 @@ mod tests {
 
     fn close(a: Vec3, b: Vec3) -> bool {
         (a - b).length() < 1e-6
+    }
+
+    #[test]
+    fn a_tiny_negative_angle_is_no_turn_at_all() {
+        // −1e-6 rem_euclid 360 rounds to exactly 360 in f32.
+        assert_eq!((-1e-6f32).rem_euclid(360.0), 360.0);
+        let (sin, cos) = sin_cos_degrees(-1e-6);
+        assert!(sin.abs() < 1e-6 && cos == 1.0, "{sin} {cos}");
     }
 
     #[test]
