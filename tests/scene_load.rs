@@ -421,5 +421,11 @@ fn material_keys_on_the_shape_a_diffuse_texture_and_a_lens_size() {
     assert!(s.materials[2].texture.is_none());
     // A lens `size` is its diameter.
     assert_eq!(s.camera.lens.map(|l| l.radius), Some(0.025));
+    // Without a camera `sampler` the command line's default applies.
+    assert_eq!(s.pixel_method, None);
+    let c = load_json(
+        r#"{ "camera": { "width": 4, "height": 4, "fov": 30, "sampler": "random" }, "scene": {} }"#,
+    );
+    assert_eq!(c.pixel_method, Some(raytracer::sampling::Method::Random));
     assert!(s.warnings.is_empty(), "{:?}", s.warnings);
 }

@@ -38,9 +38,10 @@ struct Cli {
     /// scene's own count (`pixelsample` and its spellings), else 1.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     spp: Option<u32>,
-    /// Placement of pixel and lens samples: random, jittered or sobol.
-    #[arg(long, default_value = "jittered")]
-    pixel_sampler: Method,
+    /// Placement of pixel and lens samples: random, jittered or sobol. Default: the scene
+    /// camera's `sampler`, else jittered.
+    #[arg(long)]
+    pixel_sampler: Option<Method>,
     /// Sampler for pixel, lens and every area light (overrides --pixel-sampler and each light's
     /// method): random, jittered or sobol.
     #[arg(long)]
@@ -179,7 +180,11 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
     }
     let options = RenderOptions {
         spp: cli.spp.or(scene.pixel_samples).unwrap_or(1),
-        pixel_method: cli.sampler.unwrap_or(cli.pixel_sampler),
+        pixel_method: cli
+            .sampler
+            .or(cli.pixel_sampler)
+            .or(scene.pixel_method)
+            .unwrap_or(Method::Jittered),
         seed: cli.seed,
         accel: cli.accel,
         leaf_size: cli.leaf_size as usize,

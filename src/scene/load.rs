@@ -424,6 +424,7 @@ impl<'o> Loader<'o> {
         };
         self.variant = variant;
         let (camera, exposure, lens_samples) = self.camera(root, &camera_node)?;
+        let pixel_method = self.sampling_method(&camera_node)?;
         // Hit/miss images are not exposed: a hit is full red whatever the camera says.
         let exposure = if mode == RenderMode::Binary {
             1.0
@@ -521,6 +522,7 @@ impl<'o> Loader<'o> {
             ambient,
             reflection,
             pixel_samples,
+            pixel_method,
             light_samples,
             lights: self.lights,
             primitives: self.primitives,
@@ -1070,22 +1072,27 @@ impl<'o> Loader<'o> {
 
     /// An area light's shadow rays per shading point and their placement: `method` (default
     /// jittered) and `samples` (default 4; the grid's side for jittered, the total otherwise).
-    fn area_sampling(&mut self, l: &Node) -> Result<(u32, Method), SceneError> {
-        let method = match l.get_any(&["method", "sampler", "sampling"]) {
-            Some(n) => match n.str()?.to_ascii_lowercase().as_str() {
-                "random" | "uniform" => Method::Random,
-                "jittered" | "stratified" | "jitter" => Method::Jittered,
-                "sobol" => Method::Sobol,
-                other => {
-                    self.warn(
-                        &n,
-                        format!("unknown sampling method '{other}'; using jittered"),
-                    );
-                    Method::Jittered
-                }
-            },
-            None => Method::Jittered,
+    /// A sampling method named by `method`, `sampler` or `sampling` in `node`, if any.
+    fn sampling_method(&mut self, node: &Node) -> Result<Option<Method>, SceneError> {
+        let Some(n) = node.get_any(&["method", "sampler", "sampling"]) else {
+            return Ok(None);
         };
+        Ok(Some(match n.str()?.to_ascii_lowercase().as_str() {
+            "random" | "uniform" => Method::Random,
+            "jittered" | "stratified" | "jitter" => Method::Jittered,
+            "sobol" => Method::Sobol,
+            other => {
+                self.warn(
+                    &n,
+                    format!("unknown sampling method '{other}'; using jittered"),
+                );
+                Method::Jittered
+            }
+        }))
+    }
+
+    fn area_sampling(&mut self, l: &Node) -> Result<(u32, Method), SceneError> {
+        let method = self.sampling_method(l)?.unwrap_or(Method::Jittered);
         let samples_node = l.get_any(&["samples", "nsamples", "samplesize", "cell"]);
         let samples = match &samples_node {
             Some(n) => n.u32()?.max(1),

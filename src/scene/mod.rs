@@ -63,6 +63,9 @@ pub struct Scene {
     /// Samples per pixel the file asks for (`pixelsample` and other spellings); the render takes
     /// them unless told otherwise (`--spp`).
     pub pixel_samples: Option<u32>,
+    /// How the file's camera places its pixel and lens samples (`sampler`), if it says; the
+    /// render takes it unless told otherwise (`--pixel-sampler`, `--sampler`).
+    pub pixel_method: Option<crate::sampling::Method>,
     /// Shadow rays per shading point for every area light, if the file sets them for all at once
     /// (`lightsample` and other spellings).
     pub light_samples: Option<u32>,
