@@ -59,6 +59,7 @@ pub fn load_options() -> LoadOptions {
         max_bounces: 8,
         max_triangles: 20_000,
         max_light_samples: 16,
+        max_pixel_samples: 16,
         max_texture_pixels: FUZZ_MAX_IMAGE_PIXELS,
         ..LoadOptions::default()
     }

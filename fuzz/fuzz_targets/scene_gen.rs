@@ -2,7 +2,11 @@
 //! scene file in the coursework format (any of its three variants, every key spelling the loader
 //! reads), with values drawn from a pool of hostile numbers (signed zeros, subnormals, values at
 //! and past the `f32` range, huge integers, negative counts, now and then `NaN` or `Infinity`)
-//! and, now and then, very large arrays or objects with many keys. The text then goes through
+//! and, now and then, very large arrays or objects with many keys. The forms include infinite
+//! planes, `rectangleXY`/`XZ`/`YZ`, centred and rotated boxes and rectangles, mesh placements
+//! (`euler`, `r1`..`r3`), poly spheres (`n`, `locX`..`locZ`), a `textures` library named by
+//! materials, area lights with a `shape` or a `shapeid`, attenuation (`kc`, `kl`, `kq`), ambient
+//! light, and the scene-level sample counts. The text then goes through
 //! exactly what the `scene_loader` target does with a scene: `load_str` with the same small
 //! limits, the same scratch folder of bundled meshes and textures, and a 4×4 render of a scene
 //! that loads.
@@ -523,11 +527,13 @@ impl<'a> Gen<'a> {
         let variant = self.range(0, 2);
         let mut root = Vec::new();
         if variant == 2 || self.chance(1, 30) {
-            let mode = match self.range(0, 5) {
+            let mode = match self.range(0, 7) {
                 0 => self.num(),
                 1 => s("binary"),
                 2 => s("pathtracer"),
                 3 => s("BINARY"),
+                4 => s("pathtrace"),
+                5 => s(self.pick(&["PathTrace", "pt", "path", "pathtracing", "raytrace"])),
                 _ => s("phong"),
             };
             root.push(("rendermode".to_string(), mode));
@@ -560,6 +566,13 @@ impl<'a> Gen<'a> {
                 J::Obj(vec![("width".to_string(), w), ("height".to_string(), h)]),
             ));
         }
+        self.sample_counts(&mut root);
+        let textures_at_root = self.chance(1, 2);
+        let textures = if self.chance(1, 5) {
+            Some(self.texture_library())
+        } else {
+            None
+        };
         let materials_at_root = self.chance(1, 2);
         let materials = if self.chance(1, 5) {
             Some(self.materials())
@@ -577,6 +590,11 @@ impl<'a> Gen<'a> {
             let c = self.colour();
             body.push((key.to_string(), c));
         }
+        if variant == 2 && self.chance(1, 3) || self.chance(1, 10) {
+            let key = self.pick(&["ambientlight", "ambientintensity", "ambient"]);
+            let c = self.colour();
+            body.push((key.to_string(), c));
+        }
         if self.chance(9, 10) {
             let key = self.pick(&["lightsources", "lightsources", "lights", "lightSources"]);
             let n = self.length(3, 300, 120);
@@ -590,6 +608,13 @@ impl<'a> Gen<'a> {
             body.push((key.to_string(), J::Arr(shapes)));
         } else if self.chance(1, 2) {
             body.push(("shapes".to_string(), self.num()));
+        }
+        if let Some(t) = textures {
+            if textures_at_root {
+                root.push(("textures".to_string(), t));
+            } else {
+                body.push(("textures".to_string(), t));
+            }
         }
         if let Some(m) = materials {
             if materials_at_root {
@@ -676,9 +701,19 @@ impl<'a> Gen<'a> {
                 cam.push(("exposure".to_string(), e));
             }
         }
+        if self.chance(1, 6) {
+            let m = self.sampler_name();
+            cam.push(("sampler".to_string(), m));
+        }
         if ty != "pinhole" || self.chance(1, 10) {
+            if self.chance(1, 4) {
+                let key = self.pick(&["samplesize", "nsamples"]);
+                let n = self.count(16);
+                cam.push((key.to_string(), n));
+            }
             if self.chance(3, 4) {
                 let key = self.pick(&[
+                    "size",
                     "lensRadius",
                     "lensradius",
                     "lens_radius",
@@ -755,6 +790,10 @@ impl<'a> Gen<'a> {
 
     fn material_fields(&mut self) -> Vec<(String, J)> {
         let mut m = Vec::new();
+        if self.chance(1, 4) {
+            let v = self.num();
+            m.push(("ka".to_string(), v));
+        }
         if self.chance(3, 4) {
             let v = self.num();
             m.push(("kd".to_string(), v));
@@ -781,6 +820,7 @@ impl<'a> Gen<'a> {
                 "diffuse_color",
                 "color",
                 "colour",
+                "diffuse",
             ]);
             let v = self.colour();
             m.push((key.to_string(), v));
@@ -833,8 +873,142 @@ impl<'a> Gen<'a> {
         if self.chance(1, 5) {
             self.texture(&mut m);
         }
+        if self.chance(1, 5) {
+            // A texture of the library, by name (`diffuse` as a string is a texture).
+            let key = self.pick(&["texture", "diffuse", "diffuse", "tPath", "texturepath"]);
+            let v = self.texture_name();
+            m.push((key.to_string(), v));
+        }
         self.extra_keys(&mut m);
         m
+    }
+
+    /// The name of a texture of the library (`t0`..`t3`), one it does not define, or the wrong
+    /// type.
+    fn texture_name(&mut self) -> J {
+        match self.range(0, 15) {
+            0 => s("wood"),
+            1 => s(""),
+            2 => self.num(),
+            3 => s(self.pick(TEXTURES)),
+            _ => J::Str(format!("t{}", self.range(0, 3))),
+        }
+    }
+
+    /// A `textures` library: constant colours and images (with uv offsets), by name.
+    fn texture_library(&mut self) -> J {
+        let n = self.length(4, 300, 100);
+        let mut list = Vec::new();
+        for i in 0..n {
+            let mut t = Vec::new();
+            if self.chance(15, 16) {
+                let name = if self.chance(1, 10) {
+                    J::Str(self.pick(&["", "t0", "wood", "../textures/tiny.png"]).to_string())
+                } else if self.chance(1, 40) {
+                    self.num()
+                } else {
+                    J::Str(format!("t{i}"))
+                };
+                t.push(("name".to_string(), name));
+            }
+            match self.range(0, 8) {
+                0..=3 => {
+                    if self.chance(15, 16) {
+                        let ty = self.pick(&["constant", "constant", "Constant", "CONSTANT"]);
+                        t.push(("type".to_string(), s(ty)));
+                    }
+                    if self.chance(15, 16) {
+                        let key = self.pick(&["colour", "colour", "color"]);
+                        let c = self.colour();
+                        t.push((key.to_string(), c));
+                    }
+                }
+                4..=6 => {
+                    if self.chance(15, 16) {
+                        let ty = self.pick(&["image", "image", "Image"]);
+                        t.push(("type".to_string(), s(ty)));
+                    }
+                    if self.chance(15, 16) {
+                        let key = self.pick(&["image", "image", "path", "file", "filename"]);
+                        let path = if self.chance(1, 16) {
+                            self.pick(BUNDLED_TEXTURES)
+                        } else {
+                            self.pick(TEXTURES)
+                        };
+                        let v = if self.chance(1, 20) {
+                            self.num()
+                        } else {
+                            s(path)
+                        };
+                        t.push((key.to_string(), v));
+                    }
+                    for key in ["offset_u", "offset_v"] {
+                        if self.chance(1, 2) {
+                            let v = self.num();
+                            t.push((key.to_string(), v));
+                        }
+                    }
+                }
+                _ => {
+                    let ty = if self.chance(1, 4) {
+                        self.num()
+                    } else {
+                        s(self.pick(&["checker", "wood", "", "noise", "images"]))
+                    };
+                    t.push(("type".to_string(), ty));
+                    let c = self.colour();
+                    t.push(("colour".to_string(), c));
+                    t.push(("image".to_string(), s("../textures/tiny.png")));
+                }
+            }
+            self.extra_keys(&mut t);
+            list.push(J::Obj(t));
+        }
+        J::Arr(list)
+    }
+
+    /// The scene's sample counts (each now and then): samples per pixel, shadow rays per area
+    /// light, and the path tracer's count that is only warned about.
+    fn sample_counts(&mut self, root: &mut Vec<(String, J)>) {
+        if self.chance(1, 4) {
+            let key = self.pick(&[
+                "pixelsample",
+                "pixel_sample_num",
+                "nspp",
+                "sample_number",
+                "camera samples",
+                "nsamples",
+            ]);
+            let n = self.count(20);
+            root.push((key.to_string(), n));
+        }
+        if self.chance(1, 5) {
+            let key = self.pick(&["lightsample", "shadow samples", "spp", "sample_number"]);
+            let n = self.count(20);
+            root.push((key.to_string(), n));
+        }
+        if self.chance(1, 20) {
+            let n = self.count(20);
+            root.push(("path_sample_num".to_string(), n));
+        }
+    }
+
+    /// A sampling method's name, now and then an unknown one or the wrong type.
+    fn sampler_name(&mut self) -> J {
+        if self.chance(1, 20) {
+            return self.num();
+        }
+        s(self.pick(&[
+            "jittered",
+            "stratified",
+            "jitter",
+            "random",
+            "uniform",
+            "sobol",
+            "SOBOL",
+            "halton",
+            "",
+        ]))
     }
 
     /// A texture key: a path string, an object holding one (or none), plus ignored size keys.
@@ -875,7 +1049,18 @@ impl<'a> Gen<'a> {
 
     fn light(&mut self) -> J {
         let mut l = Vec::new();
-        match self.range(0, 9) {
+        match self.range(0, 10) {
+            9 => {
+                let ty = self.pick(&["ambient", "ambient", "ambientlight", "Ambient"]);
+                l.push(("type".to_string(), s(ty)));
+                if self.chance(15, 16) {
+                    let key = self.pick(&["intensity", "color", "colour"]);
+                    let c = self.colour();
+                    l.push((key.to_string(), c));
+                }
+                self.extra_keys(&mut l);
+                return J::Obj(l);
+            }
             0..=4 => {
                 let ty = self.pick(&[
                     "pointlight",
@@ -902,18 +1087,8 @@ impl<'a> Gen<'a> {
                 }
                 if self.chance(2, 3) {
                     let key = self.pick(&["method", "sampler", "sampling"]);
-                    let m = self.pick(&[
-                        "jittered",
-                        "stratified",
-                        "jitter",
-                        "random",
-                        "uniform",
-                        "sobol",
-                        "SOBOL",
-                        "halton",
-                        "",
-                    ]);
-                    l.push((key.to_string(), s(m)));
+                    let m = self.sampler_name();
+                    l.push((key.to_string(), m));
                 }
             }
             _ => {
@@ -951,9 +1126,80 @@ impl<'a> Gen<'a> {
                 l.push((key.to_string(), c));
             }
         }
+        if self.chance(1, 4) {
+            // Attenuation coefficients: 1/(kc + kl·d + kq·d²).
+            for key in ["kc", "kl", "kq"] {
+                if self.chance(2, 3) {
+                    let v = if self.chance(3, 4) {
+                        self.positive()
+                    } else {
+                        self.num()
+                    };
+                    l.push((key.to_string(), v));
+                }
+            }
+        }
     }
 
     fn area_geometry(&mut self, l: &mut Vec<(String, J)>) {
+        match self.range(0, 11) {
+            8 => {
+                // A sphere light.
+                let mut sh = Vec::new();
+                if self.chance(15, 16) {
+                    let ty = self.pick(&["sphere", "sphere", "uvsphere", "Sphere"]);
+                    sh.push(("type".to_string(), s(ty)));
+                }
+                self.centre(&mut sh);
+                if self.chance(15, 16) {
+                    let r = self.positive();
+                    sh.push(("radius".to_string(), r));
+                }
+                self.extra_keys(&mut sh);
+                l.push(("shape".to_string(), J::Obj(sh)));
+                return;
+            }
+            9 => {
+                // A quad or triangle light, by its corners.
+                let mut sh = Vec::new();
+                let ty = self.pick(&[
+                    "plane",
+                    "quad",
+                    "rectangle",
+                    "planarquad",
+                    "triangle",
+                    "triangle",
+                    "box",
+                    "",
+                ]);
+                if self.chance(15, 16) {
+                    sh.push(("type".to_string(), s(ty)));
+                }
+                if ty == "triangle" {
+                    self.triangle(&mut sh);
+                } else {
+                    self.corners(
+                        &mut sh,
+                        &[&["v0", "v1", "v2", "v3"], &["point1", "point2", "point3", "point4"]],
+                        &[&["uv0", "uv1", "uv2", "uv3"]],
+                    );
+                }
+                let v = if self.chance(1, 30) {
+                    self.num()
+                } else {
+                    J::Obj(sh)
+                };
+                l.push(("shape".to_string(), v));
+                return;
+            }
+            10 => {
+                // A shape of the scene, by its `id`.
+                let id = self.shape_id();
+                l.push(("shapeid".to_string(), id));
+                return;
+            }
+            _ => {}
+        }
         let names: &[&str] = match self.range(0, 7) {
             0 => &["v0", "v1", "v2", "v3"],
             1 => &["v0", "v1", "v2"],
@@ -993,8 +1239,19 @@ impl<'a> Gen<'a> {
 
     fn shape(&mut self) -> J {
         let mut sh = Vec::new();
-        let kind = self.range(0, 13);
+        let kind = self.range(0, 17);
         let ty = match kind {
+            13 => self.pick(&[
+                "rectangleXY",
+                "rectangleXZ",
+                "rectangleYZ",
+                "rectanglexy",
+                "RECTANGLEXZ",
+                "rectangleyz",
+            ]),
+            14 => self.pick(&["plane", "plane", "quad", "rectangle"]),
+            15 => self.pick(&["plane", "plane", "Plane", "quad"]),
+            16 => self.pick(&["trimesh", "mesh", "trianglemesh"]),
             0 | 1 => self.pick(&["sphere", "sphere", "uvsphere", "SPHERE"]),
             2 => self.pick(&["cylinder", "uvcylinder"]),
             3 | 4 => "triangle",
@@ -1027,6 +1284,37 @@ impl<'a> Gen<'a> {
             5 | 6 => self.quad(&mut sh),
             7 => self.boxed(&mut sh),
             8..=11 => self.mesh(&mut sh),
+            13 => self.axis_rectangle(&mut sh, ty),
+            14 => {
+                // A rectangle by its centre, width (x) and height (z), turned about its centre.
+                self.centre_key(&mut sh);
+                for k in ["width", "height"] {
+                    if self.chance(15, 16) {
+                        let v = self.positive();
+                        sh.push((k.to_string(), v));
+                    }
+                }
+                if self.chance(1, 2) {
+                    self.euler(&mut sh);
+                }
+            }
+            15 => {
+                // An infinite plane.
+                if self.chance(31, 32) {
+                    let n = if self.chance(3, 4) {
+                        let axes = ["[0,1,0]", "[0,-1,0]", "[1,0,0]", "[0,0,1]", "[0,0,-1]"];
+                        lit(self.pick(&axes))
+                    } else {
+                        self.vec3()
+                    };
+                    sh.push(("normal".to_string(), n));
+                }
+                if self.chance(31, 32) {
+                    let d = self.num();
+                    sh.push(("distance".to_string(), d));
+                }
+            }
+            16 => self.poly_sphere(&mut sh),
             _ => {
                 // A skipped shape may hold anything.
                 let v = self.vec3();
@@ -1043,11 +1331,116 @@ impl<'a> Gen<'a> {
             // Texture keys on the shape, read when the material has none.
             self.texture(&mut sh);
         }
-        if self.chance(1, 16) {
-            sh.push(("id".to_string(), s("shape")));
+        if self.chance(1, 6) {
+            let id = self.shape_id();
+            sh.push(("id".to_string(), id));
         }
         self.extra_keys(&mut sh);
         J::Obj(sh)
+    }
+
+    /// A shape id an area light's `shapeid` may name: a few shared names, mostly; now and then
+    /// one no shape has, or the wrong type.
+    fn shape_id(&mut self) -> J {
+        match self.range(0, 19) {
+            0 => s("nope"),
+            1 => s(""),
+            2 => self.num(),
+            _ => J::Str(format!("a{}", self.range(0, 2))),
+        }
+    }
+
+    /// `center` or `centre`, nearly always.
+    fn centre_key(&mut self, sh: &mut Vec<(String, J)>) {
+        if self.chance(15, 16) {
+            let key = self.pick(&["center", "center", "centre"]);
+            let c = self.vec3();
+            sh.push((key.to_string(), c));
+        }
+    }
+
+    /// Euler angles in degrees: quarter turns mostly, or any numbers.
+    fn euler(&mut self, sh: &mut Vec<(String, J)>) {
+        let key = self.pick(&["rot", "rotation", "euler"]);
+        let r = if self.chance(1, 2) {
+            let angles = ["0", "90", "-90", "180", "45", "270", "360", "30", "-0", "720"];
+            J::Arr(vec![
+                lit(self.pick(&angles)),
+                lit(self.pick(&angles)),
+                lit(self.pick(&angles)),
+            ])
+        } else {
+            self.vec3()
+        };
+        sh.push((key.to_string(), r));
+    }
+
+    /// `rectangleXY`/`XZ`/`YZ`: two ranges and the constant coordinate (or `k`).
+    fn axis_rectangle(&mut self, sh: &mut Vec<(String, J)>, ty: &str) {
+        let (a, b, c) = match ty.to_ascii_lowercase().as_str() {
+            "rectanglexy" => ("x", "y", "z"),
+            "rectanglexz" => ("x", "z", "y"),
+            _ => ("y", "z", "x"),
+        };
+        for axis in [a, b] {
+            let lo = self.num();
+            let hi = if self.chance(1, 16) {
+                match &lo {
+                    J::Lit(t) => J::Lit(t.clone()), // the same end twice: no area
+                    _ => self.num(),
+                }
+            } else {
+                self.num()
+            };
+            if self.chance(31, 32) {
+                sh.push((format!("{axis}0"), lo));
+            }
+            if self.chance(31, 32) {
+                sh.push((format!("{axis}1"), hi));
+            }
+        }
+        if self.chance(15, 16) {
+            let key = if self.chance(1, 3) { "k" } else { c };
+            let k = self.num();
+            sh.push((key.to_string(), k));
+        }
+        if self.chance(1, 16) {
+            // The constant key of another orientation as well.
+            let other = self.pick(&["x", "y", "z", "k"]);
+            let v = self.num();
+            sh.push((other.to_string(), v));
+        }
+    }
+
+    /// A generated poly sphere: `n` faceted spheres at `locX`, `locY`, `locZ` with `scale`.
+    fn poly_sphere(&mut self, sh: &mut Vec<(String, J)>) {
+        let n = if self.go_hostile() {
+            lit(self.pick(HOSTILE_COUNTS))
+        } else if self.chance(1, 20) {
+            lit(self.pick(&["0", "8", "30", "256", "257"]))
+        } else {
+            J::Lit(self.range(1, 3).to_string())
+        };
+        sh.push(("n".to_string(), n));
+        for key in ["locX", "locY", "locZ"] {
+            if self.chance(7, 8) {
+                let v = self.num();
+                sh.push((key.to_string(), v));
+            }
+        }
+        if self.chance(3, 4) {
+            let v = if self.chance(1, 6) {
+                self.num()
+            } else {
+                self.positive()
+            };
+            sh.push(("scale".to_string(), v));
+        }
+        if self.chance(1, 16) {
+            // A mesh file as well: the file wins.
+            let p = self.pick(MESH_FILES);
+            sh.push(("mPath".to_string(), s(p)));
+        }
     }
 
     fn centre(&mut self, sh: &mut Vec<(String, J)>) {
@@ -1167,10 +1560,8 @@ impl<'a> Gen<'a> {
                 sh.push(("max".to_string(), b));
             }
         }
-        if self.chance(1, 8) {
-            let key = self.pick(&["rotation", "rot"]);
-            let r = self.vec3();
-            sh.push((key.to_string(), r));
+        if self.chance(1, 4) {
+            self.euler(sh);
         }
     }
 
@@ -1328,10 +1719,26 @@ impl<'a> Gen<'a> {
             let p = self.vec3();
             sh.push((key.to_string(), p));
         }
-        if self.chance(1, 10) {
-            let key = self.pick(&["rotation", "euler", "r1"]);
-            let r = self.vec3();
-            sh.push((key.to_string(), r));
+        match self.range(0, 11) {
+            0 | 1 => self.euler(sh),
+            2 => {
+                // Rows: the images of the axes (a permutation with signs, mostly).
+                let rows = [
+                    "[1,0,0]", "[0,1,0]", "[0,0,1]", "[-1,0,0]", "[0,-1,0]", "[0,0,-1]",
+                    "[0,0,0]",
+                ];
+                for key in ["r1", "r2", "r3"] {
+                    if self.chance(15, 16) {
+                        let r = if self.chance(3, 4) {
+                            lit(self.pick(&rows))
+                        } else {
+                            self.vec3()
+                        };
+                        sh.push((key.to_string(), r));
+                    }
+                }
+            }
+            _ => {}
         }
     }
 
