@@ -903,7 +903,10 @@ impl<'a> Gen<'a> {
             let mut t = Vec::new();
             if self.chance(15, 16) {
                 let name = if self.chance(1, 10) {
-                    J::Str(self.pick(&["", "t0", "wood", "../textures/tiny.png"]).to_string())
+                    J::Str(
+                        self.pick(&["", "t0", "wood", "../textures/tiny.png"])
+                            .to_string(),
+                    )
                 } else if self.chance(1, 40) {
                     self.num()
                 } else {
@@ -1180,7 +1183,10 @@ impl<'a> Gen<'a> {
                 } else {
                     self.corners(
                         &mut sh,
-                        &[&["v0", "v1", "v2", "v3"], &["point1", "point2", "point3", "point4"]],
+                        &[
+                            &["v0", "v1", "v2", "v3"],
+                            &["point1", "point2", "point3", "point4"],
+                        ],
                         &[&["uv0", "uv1", "uv2", "uv3"]],
                     );
                 }
@@ -1363,7 +1369,9 @@ impl<'a> Gen<'a> {
     fn euler(&mut self, sh: &mut Vec<(String, J)>) {
         let key = self.pick(&["rot", "rotation", "euler"]);
         let r = if self.chance(1, 2) {
-            let angles = ["0", "90", "-90", "180", "45", "270", "360", "30", "-0", "720"];
+            let angles = [
+                "0", "90", "-90", "180", "45", "270", "360", "30", "-0", "720",
+            ];
             J::Arr(vec![
                 lit(self.pick(&angles)),
                 lit(self.pick(&angles)),
@@ -1724,8 +1732,7 @@ impl<'a> Gen<'a> {
             2 => {
                 // Rows: the images of the axes (a permutation with signs, mostly).
                 let rows = [
-                    "[1,0,0]", "[0,1,0]", "[0,0,1]", "[-1,0,0]", "[0,-1,0]", "[0,0,-1]",
-                    "[0,0,0]",
+                    "[1,0,0]", "[0,1,0]", "[0,0,1]", "[-1,0,0]", "[0,-1,0]", "[0,0,-1]", "[0,0,0]",
                 ];
                 for key in ["r1", "r2", "r3"] {
                     if self.chance(15, 16) {
