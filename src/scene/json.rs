@@ -478,11 +478,14 @@ impl<'a, 't> Node<'a, 't> {
     }
 
     fn child(&self, value: &'a Value<'t>, segment: String) -> Node<'a, 't> {
-        let path = if self.path.is_empty() || segment.starts_with('[') {
-            format!("{}{}", self.path, segment)
-        } else {
-            format!("{}.{}", self.path, segment)
-        };
+        // Built by hand: this runs for every value the loader looks at, and the formatting
+        // machinery costs several times the copy.
+        let mut path = String::with_capacity(self.path.len() + 1 + segment.len());
+        path.push_str(&self.path);
+        if !(self.path.is_empty() || segment.starts_with('[')) {
+            path.push('.');
+        }
+        path.push_str(&segment);
         Node {
             value,
             path,
