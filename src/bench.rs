@@ -265,14 +265,14 @@ pub fn with_lights(scene: &Scene, variant: LightVariant) -> Scene {
                     intensity,
                     ..
                 },
-            ) => Light::Quad {
-                origin: *origin,
-                edge_u: *edge_u,
-                edge_v: *edge_v,
-                intensity: *intensity,
-                samples: AREA_SAMPLES,
-                method: Method::Jittered,
-            },
+            ) => Light::quad(
+                *origin,
+                *edge_u,
+                *edge_v,
+                *intensity,
+                AREA_SAMPLES,
+                Method::Jittered,
+            ),
             (
                 LightVariant::Area,
                 Light::Point {
@@ -283,14 +283,14 @@ pub fn with_lights(scene: &Scene, variant: LightVariant) -> Scene {
                 let facing = (centre - *position).normalize_or(Vec3::Y);
                 let (u, v) = orthonormal_basis(facing);
                 let side = 0.05 * diagonal;
-                Light::Quad {
-                    origin: *position - 0.5 * side * (u + v),
-                    edge_u: side * u,
-                    edge_v: side * v,
-                    intensity: *intensity,
-                    samples: AREA_SAMPLES,
-                    method: Method::Jittered,
-                }
+                Light::quad(
+                    *position - 0.5 * side * (u + v),
+                    side * u,
+                    side * v,
+                    *intensity,
+                    AREA_SAMPLES,
+                    Method::Jittered,
+                )
             }
             (LightVariant::Point, Light::Sphere { .. } | Light::Triangles { .. }) => Light::Point {
                 position: l.center(),

@@ -96,6 +96,10 @@ pub enum Light {
         /// Number of shadow rays per shading point.
         samples: u32,
         method: Method,
+        /// Unit normal of the quad (`edge_u × edge_v`, normalised), kept for its samples.
+        normal: Vec3,
+        /// Area of the quad, kept for its samples' pdf.
+        area: f32,
     },
     /// A uniformly bright ball.
     Sphere {
@@ -147,6 +151,29 @@ pub struct LightSample {
 }
 
 impl Light {
+    /// The parallelogram light `origin + s·edge_u + t·edge_v`, `s, t ∈ [0, 1]`, with its normal
+    /// and area worked out once rather than for every sample.
+    pub fn quad(
+        origin: Vec3,
+        edge_u: Vec3,
+        edge_v: Vec3,
+        intensity: Intensity,
+        samples: u32,
+        method: Method,
+    ) -> Light {
+        let cross = edge_u.cross(edge_v);
+        Light::Quad {
+            origin,
+            edge_u,
+            edge_v,
+            intensity,
+            samples,
+            method,
+            normal: cross.normalize_or_zero(),
+            area: cross.length(),
+        }
+    }
+
     /// How many shadow rays this light takes per shading point.
     pub fn sample_count(&self) -> u32 {
         match self {
@@ -180,11 +207,12 @@ impl Light {
                 origin,
                 edge_u,
                 edge_v,
+                normal,
+                area,
                 ..
             } => {
                 let position = *origin + u.x * *edge_u + u.y * *edge_v;
-                let cross = edge_u.cross(*edge_v);
-                flat_sample(from, position, cross.normalize_or_zero(), cross.length())
+                flat_sample(from, position, *normal, *area)
             }
             Light::Sphere { center, radius, .. } => sample_sphere(*center, *radius, from, u),
             Light::Triangles {
@@ -386,18 +414,18 @@ mod tests {
 
     #[test]
     fn quad_samples_cover_the_parallelogram_and_share_the_power() {
-        let l = Light::Quad {
-            origin: Vec3::ZERO,
-            edge_u: Vec3::X * 2.0,
-            edge_v: Vec3::Y,
-            intensity: Intensity {
+        let l = Light::quad(
+            Vec3::ZERO,
+            Vec3::X * 2.0,
+            Vec3::Y,
+            Intensity {
                 diffuse: Vec3::ONE,
                 specular: Vec3::ONE,
                 falloff: Falloff::InverseSquare { scale: 1.0 },
             },
-            samples: 16,
-            method: Method::Jittered,
-        };
+            16,
+            Method::Jittered,
+        );
         let s = l.sample(Vec3::new(0.0, 0.0, 1.0), Vec2::new(1.0, 1.0));
         assert_eq!(s.position, Vec3::new(2.0, 1.0, 0.0));
         assert_eq!(s.weight, 1.0);

@@ -991,14 +991,9 @@ impl<'o> Loader<'o> {
             ));
         };
         let (samples, method) = self.area_sampling(l)?;
-        self.lights.push(Light::Quad {
-            origin,
-            edge_u,
-            edge_v,
-            intensity,
-            samples,
-            method,
-        });
+        self.lights.push(Light::quad(
+            origin, edge_u, edge_v, intensity, samples, method,
+        ));
         Ok(())
     }
 
@@ -1037,14 +1032,7 @@ impl<'o> Loader<'o> {
                 if edge_u.cross(edge_v) == Vec3::ZERO {
                     return Err(shape.error("the quad has zero area (its corners are collinear)"));
                 }
-                Light::Quad {
-                    origin,
-                    edge_u,
-                    edge_v,
-                    intensity,
-                    samples,
-                    method,
-                }
+                Light::quad(origin, edge_u, edge_v, intensity, samples, method)
             } else {
                 let triangles = vec![[p[0], p[1], p[2]]];
                 if (p[1] - p[0]).cross(p[2] - p[0]) == Vec3::ZERO {
