@@ -45,11 +45,12 @@
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use crate::accel::Accel;
+use crate::accel::aabb::Aabb;
+use crate::accel::{Accel, Beam};
 use crate::light::Light;
-use crate::material::Reflection;
+use crate::material::{highlight, Reflection};
 use crate::math::{fresnel_dielectric, reflect, refract, Vec2, Vec3};
-use crate::ray::{Hit, Ray};
+use crate::ray::{Hit, Ray, SpawnPoints};
 use crate::sampling::{Method, SampleKey};
 use crate::scene::{RenderMode, Scene};
 
@@ -64,6 +65,11 @@ pub const BINARY_HIT: Vec3 = Vec3::new(1.0, 0.0, 0.0);
 /// A light exactly on a surface (an area light drawn onto a ceiling) must not be shadowed by that
 /// surface: shadow rays stop this fraction of their length short of the light.
 const LIGHT_CLEARANCE: f32 = 1e-4;
+
+/// Most primitives an area light's shadow rays from one point test one by one (see [`Beam`]);
+/// past this many the whole accelerator is queried instead, which for a tree of that size costs
+/// about as much.
+const BEAM_CANDIDATE_LIMIT: usize = 16;
 
 /// Most transmissive surfaces a shadow ray passes through before it counts as blocked.
 const MAX_SHADOW_CROSSINGS: u32 = 32;
@@ -204,6 +210,10 @@ pub struct Tracer<'a> {
     budget: u32,
     /// The open shading points of the current camera sample, kept to reuse its memory.
     open: Vec<Open>,
+    /// Per light, the box its samples lie in (for [`Beam`]s); `None` for point lights.
+    light_bounds: Vec<Option<Aabb>>,
+    /// The candidates of the current light's beam, kept to reuse their memory.
+    candidates: Vec<u32>,
 }
 
 impl<'a> Tracer<'a> {
@@ -217,6 +227,8 @@ impl<'a> Tracer<'a> {
             cancel: None,
             budget: MAX_SECONDARY_RAYS_PER_SAMPLE,
             open: Vec::new(),
+            light_bounds: scene.lights.iter().map(Light::bounds).collect(),
+            candidates: Vec::new(),
         }
     }
 
@@ -317,8 +329,8 @@ impl<'a> Tracer<'a> {
             return BINARY_HIT;
         }
         let primitive = &scene.primitives[prim as usize];
-        let hit = primitive.hit(ray, cand, prim, &scene.meshes);
         let material = &scene.materials[primitive.material as usize];
+        let hit = primitive.hit_with(ray, cand, prim, &scene.meshes, material.texture.is_some());
         let front = hit.normal.dot(ray.dir) < 0.0;
         let (n, ns) = if front {
             (hit.normal, hit.shading_normal)
@@ -336,29 +348,46 @@ impl<'a> Tracer<'a> {
         } else {
             material.ka * scene.ambient * base
         };
+        let spawn = hit.spawn_points();
+        let mut candidates = std::mem::take(&mut self.candidates);
         for (li, light) in scene.lights.iter().enumerate() {
             let (count, method) = self.options.light_plan(light);
             // Each sample carries 1/count of what one sample alone would (its `weight`).
             let share = 1.0 / count as f32;
-            let light_key = key.stream(li as u64);
+            let points = key.stream(li as u64).point_set(method, 0, count);
             let intensity = light.intensity();
             let surface = light.surface();
             let known = if self.options.adaptive_lights && count > ADAPTIVE_PROBES.len() as u32 {
-                self.uniform_visibility(&hit, n, light, &surface)
+                self.uniform_visibility(&hit, &spawn, n, light, &surface)
             } else {
                 None
             };
             if known == Some(0.0) {
                 continue; // every probe is blocked: the light is taken as fully hidden
             }
+            // The primitives this light's shadow rays may meet, once for all of them.
+            let only = (count > 1 && known.is_none())
+                .then(|| self.light_bounds[li])
+                .flatten()
+                .and_then(|b| Beam::new(hit.point, &b, spawn.offset()))
+                .filter(|beam| {
+                    self.accel.beam_candidates(
+                        &scene.primitives,
+                        beam,
+                        BEAM_CANDIDATE_LIMIT,
+                        &mut candidates,
+                    )
+                })
+                .map(|_| candidates.as_slice());
             for s in 0..count {
                 if s % SHADOW_RAYS_PER_CANCEL_CHECK == 0 && self.cancelled() {
+                    self.candidates = candidates;
                     return color;
                 }
                 let sample = if count == 1 {
                     light.sample_one(hit.point)
                 } else {
-                    light.sample(hit.point, light_key.set_point(method, 0, s, count))
+                    light.sample(hit.point, points.point(s))
                 };
                 let to_light = sample.position - hit.point;
                 if to_light.dot(n) <= 0.0 {
@@ -367,7 +396,7 @@ impl<'a> Tracer<'a> {
                 let d2 = to_light.length_squared();
                 let visibility = match known {
                     Some(v) => v,
-                    None => self.transmittance(&hit, sample.position, &surface),
+                    None => self.transmittance(&spawn, sample.position, &surface, only),
                 };
                 if visibility == 0.0 {
                     continue;
@@ -378,12 +407,13 @@ impl<'a> Tracer<'a> {
                 color += material.kd * base * intensity.diffuse * (n_dot_l * e);
                 if material.ks > 0.0 {
                     let h = (l + v).normalize_or_zero();
-                    let spec = ns.dot(h).max(0.0).powf(material.exponent);
+                    let spec = highlight(ns.dot(h).max(0.0), material.exponent);
                     color += material.ks * material.specular * intensity.specular * (spec * e);
                 }
             }
         }
 
+        self.candidates = candidates;
         if scene.reflection == Reflection::Blended && material.kt == 0.0 && material.kr > 0.0 {
             // The mirror shows what it reflects in place of its own shading.
             color *= 1.0 - material.kr.min(1.0);
@@ -433,6 +463,7 @@ impl<'a> Tracer<'a> {
     fn uniform_visibility(
         &mut self,
         hit: &Hit,
+        spawn: &SpawnPoints,
         n: Vec3,
         light: &Light,
         surface: &Range<u32>,
@@ -443,7 +474,7 @@ impl<'a> Tracer<'a> {
             if (p - hit.point).dot(n) <= 0.0 {
                 return None;
             }
-            let v = self.transmittance(hit, p, surface);
+            let v = self.transmittance(spawn, p, surface, None);
             match seen {
                 None => seen = Some(v),
                 Some(s) if s != v => return None,
@@ -453,28 +484,70 @@ impl<'a> Tracer<'a> {
         seen
     }
 
-    /// Fraction of light reaching `hit` from `target`: 0 behind an opaque surface, multiplied by
-    /// `kt` for every transmissive surface crossed. The primitives in `surface` (the light's own,
-    /// for a shape that emits) are passed through: a light is never its own shadow.
-    fn transmittance(&mut self, hit: &Hit, target: Vec3, surface: &Range<u32>) -> f32 {
+    /// Fraction of light reaching the shading point of `from` from `target`: 0 behind an opaque
+    /// surface, multiplied by `kt` for every transmissive surface crossed. The primitives in
+    /// `surface` (the light's own, for a shape that emits) are passed through: a light is never
+    /// its own shadow.
+    ///
+    /// One any-hit query answers most rays: it stops at the first opaque blocker (the answer is
+    /// 0, whatever else lies on the way) and notes the transmissive surfaces the ray crosses; when
+    /// it crosses none, or only surfaces of `kt = 1` (a product of ones, whatever their order
+    /// and number within the crossing limit), the answer is 1. Only rays through glass of
+    /// `kt < 1` and nothing opaque walk their crossings one closest hit at a time, as the
+    /// product of `kt` needs.
+    ///
+    /// `only`, where given, lists every primitive the ray can meet (see [`Beam`]); the any-hit
+    /// query tests just those.
+    fn transmittance(
+        &mut self,
+        from: &SpawnPoints,
+        target: Vec3,
+        surface: &Range<u32>,
+        only: Option<&[u32]>,
+    ) -> f32 {
         let scene = self.scene;
+        let prims = &scene.primitives;
         self.counts.shadow += 1;
-        let (ray, dist) = hit.spawn_to(target);
+        let (ray, dist) = from.ray_to(target);
         let t_max = dist * (1.0 - LIGHT_CLEARANCE);
+        let any = |blocks: &mut dyn FnMut(u32) -> bool| match only {
+            Some(candidates) => self.accel.any_of(prims, candidates, &ray, t_max, blocks),
+            None => self.accel.any(prims, &ray, t_max, blocks),
+        };
         if !scene.has_transmissive {
-            let blocked = self
-                .accel
-                .any(&scene.primitives, &ray, t_max, |p| !surface.contains(&p));
+            let blocked = any(&mut |p| !surface.contains(&p));
             return if blocked { 0.0 } else { 1.0 };
+        }
+        // Primitives the ray passes (its own light's and transmissive ones), and whether every
+        // transmissive one lets everything through.
+        let (mut passed, mut crosses, mut clear) = (0u32, false, true);
+        let opaque = any(&mut |p| {
+            passed += 1;
+            if surface.contains(&p) {
+                return false;
+            }
+            let kt = scene.materials[prims[p as usize].material as usize].kt;
+            crosses |= kt > 0.0;
+            clear &= kt == 1.0;
+            kt <= 0.0
+        });
+        if opaque {
+            return 0.0;
+        }
+        // With no transmissive surface on the way, or only ones of kt = 1 that the walk below
+        // could not cross more than its limit of times (a primitive is crossed at most twice by
+        // a line), the product is 1 without walking.
+        if !crosses || (clear && 2 * passed <= MAX_SHADOW_CROSSINGS) {
+            return 1.0;
         }
         let mut ray = ray;
         let mut t_max = t_max;
         let mut through = 1.0;
         for _ in 0..MAX_SHADOW_CROSSINGS {
-            let Some((p, c)) = self.accel.closest(&scene.primitives, &ray, t_max) else {
+            let Some((p, c)) = self.accel.closest(prims, &ray, t_max) else {
                 return through;
             };
-            let prim = &scene.primitives[p as usize];
+            let prim = &prims[p as usize];
             let material = &scene.materials[prim.material as usize];
             if !surface.contains(&p) {
                 if !material.is_transmissive() {
@@ -482,7 +555,7 @@ impl<'a> Tracer<'a> {
                 }
                 through *= material.kt;
             }
-            let h = prim.hit(&ray, c, p, &scene.meshes);
+            let h = prim.hit_with(&ray, c, p, &scene.meshes, false);
             let (next, d) = h.spawn_to(target);
             ray = next;
             t_max = d * (1.0 - LIGHT_CLEARANCE);

@@ -46,6 +46,7 @@
 
 use std::ops::Range;
 
+use crate::accel::aabb::Aabb;
 use crate::math::{orthonormal_basis, Vec2, Vec3};
 use crate::sampling::{uniform_sphere, Method};
 
@@ -193,7 +194,9 @@ impl Light {
         }
     }
 
-    /// The sample at `u ∈ [0,1)²` for the shading point `from`.
+    /// The sample at `u ∈ [0,1)²` for the shading point `from`. Inlined, so that a caller
+    /// that does not read the solid-angle `pdf` does not pay for its division.
+    #[inline(always)]
     pub fn sample(&self, from: Vec3, u: Vec2) -> LightSample {
         match self {
             Light::Point { position, .. } => LightSample {
@@ -282,6 +285,35 @@ impl Light {
         }
     }
 
+    /// A box holding every sample position of the light; `None` for a point light.
+    pub fn bounds(&self) -> Option<Aabb> {
+        match self {
+            Light::Point { .. } => None,
+            Light::Quad {
+                origin,
+                edge_u,
+                edge_v,
+                ..
+            } => Some(
+                Aabb::EMPTY
+                    .grow(*origin)
+                    .grow(*origin + *edge_u)
+                    .grow(*origin + *edge_v)
+                    .grow(*origin + *edge_u + *edge_v),
+            ),
+            Light::Sphere { center, radius, .. } => Some(Aabb::new(
+                *center - Vec3::splat(*radius),
+                *center + Vec3::splat(*radius),
+            )),
+            Light::Triangles { triangles, .. } => Some(
+                triangles
+                    .iter()
+                    .flatten()
+                    .fold(Aabb::EMPTY, |b, &p| b.grow(p)),
+            ),
+        }
+    }
+
     /// The scene primitives that are this light's own surface: its shadow rays pass through them
     /// (empty for lights that are not shapes of the scene).
     pub fn surface(&self) -> Range<u32> {
@@ -294,6 +326,7 @@ impl Light {
 
 /// A uniform-by-area sample at `position` on a flat light of total `area` and unit `normal`:
 /// weight 1, solid-angle density `d² / (area · |cos θ_l|)`.
+#[inline(always)]
 fn flat_sample(from: Vec3, position: Vec3, normal: Vec3, area: f32) -> LightSample {
     let d = position - from;
     let d2 = d.length_squared();
@@ -403,6 +436,12 @@ impl Intensity {
     pub fn falloff(&self, d2: f32) -> f32 {
         match self.falloff {
             Falloff::InverseSquare { scale } => scale / d2,
+            // Without distance terms (every CGR `intensity` light) the square root is not
+            // needed: for a finite `d² ≥ 0`, `kl·d` and `kq·d²` are zeros of the signs of `kl`
+            // and `kq`, the very values written here.
+            Falloff::Polynomial { kc, kl, kq } if kl == 0.0 && kq == 0.0 && d2.is_finite() => {
+                1.0 / (kc + kl * 0.0 + kq * 0.0)
+            }
             Falloff::Polynomial { kc, kl, kq } => 1.0 / (kc + kl * d2.sqrt() + kq * d2),
         }
     }

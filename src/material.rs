@@ -52,10 +52,69 @@ impl Default for Material {
     }
 }
 
+/// Largest whole exponent [`highlight`] raises by repeated multiplication; past it (or for a
+/// fractional exponent) it calls `powf`.
+const MAX_WHOLE_EXPONENT: f32 = 4096.0;
+
+/// The Blinn-Phong highlight `cos^exponent` for `cos ∈ [0, 1]`. A whole exponent (every bundled
+/// and corpus scene's) is raised by square-and-multiply, several times faster than `powf`; its
+/// relative error is at most `2·exponent` units of 2⁻²⁴ (each squaring doubles the error carried
+/// in), below 5·10⁻⁴ of the value up to the largest such exponent: under a quarter of an 8-bit
+/// step (1/1020) for highlights up to 1 (the tests in this module check the bound).
+#[inline]
+pub fn highlight(cos: f32, exponent: f32) -> f32 {
+    if (0.0..=MAX_WHOLE_EXPONENT).contains(&exponent) && exponent.fract() == 0.0 {
+        // Square-and-multiply, low bit first.
+        let (mut base, mut n, mut result) = (cos, exponent as u32, 1.0f32);
+        while n > 0 {
+            if n & 1 == 1 {
+                result *= base;
+            }
+            n >>= 1;
+            if n > 0 {
+                base *= base;
+            }
+        }
+        result
+    } else {
+        cos.powf(exponent)
+    }
+}
+
 impl Material {
     /// Whether shadow rays pass (attenuated) through this material.
     pub fn is_transmissive(&self) -> bool {
         self.kt > 0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The whole-exponent highlight against a double-precision power, over the cosines and
+    /// exponents scenes use.
+    #[test]
+    fn whole_exponent_highlight_is_within_its_bound() {
+        for exponent in [
+            0.0f32, 1.0, 2.0, 7.0, 10.0, 30.0, 64.0, 100.0, 200.0, 1000.0, 4096.0,
+        ] {
+            let bound = (2.0 * exponent as f64 + 1.0) * f32::EPSILON as f64 / 2.0;
+            for i in 0..=20000 {
+                let cos = 1.0 - (i as f32 / 20000.0).powi(3);
+                let got = highlight(cos, exponent) as f64;
+                let want = (cos as f64).powf(exponent as f64);
+                if want < f32::MIN_POSITIVE as f64 {
+                    assert!(got < 1e-30, "{cos}^{exponent}: {got}");
+                    continue;
+                }
+                let rel = (got - want).abs() / want;
+                assert!(rel <= bound, "{cos}^{exponent}: {got} vs {want} ({rel:e})");
+            }
+        }
+        // Fractional and negative exponents keep powf.
+        assert_eq!(highlight(0.5, 2.5), 0.5f32.powf(2.5));
+        assert_eq!(highlight(0.0, 0.0), 1.0);
     }
 }
 

@@ -130,6 +130,57 @@ impl Hit {
     }
 }
 
+/// The two origins rays leave a hit from (just above and just below the surface), worked out once
+/// for a shading point that spawns many rays, such as the shadow rays towards an area light.
+/// [`SpawnPoints::ray_to`] gives exactly what [`Hit::spawn_to`] gives.
+#[derive(Debug, Clone, Copy)]
+pub struct SpawnPoints {
+    point: Vec3,
+    normal: Vec3,
+    /// The origin for directions with `w · normal ≥ 0`.
+    above: Vec3,
+    /// The origin for directions with `w · normal < 0`.
+    below: Vec3,
+}
+
+impl SpawnPoints {
+    /// How far the origins are from the hit point.
+    #[inline]
+    pub fn offset(&self) -> f32 {
+        (self.above - self.point)
+            .length()
+            .max((self.below - self.point).length())
+    }
+
+    /// [`Hit::spawn_to`] from the hit these points were made for.
+    #[inline]
+    pub fn ray_to(&self, target: Vec3) -> (Ray, f32) {
+        let w = (target - self.point).normalize_or_zero();
+        // `offset_ray_origin` depends on the direction only through this sign.
+        let origin = if w.dot(self.normal) < 0.0 {
+            self.below
+        } else {
+            self.above
+        };
+        let to = target - origin;
+        let dist = to.length();
+        (Ray::new(origin, to / dist.max(f32::MIN_POSITIVE)), dist)
+    }
+}
+
+impl Hit {
+    /// The origins of every ray this hit may spawn (see [`SpawnPoints`]).
+    #[inline]
+    pub fn spawn_points(&self) -> SpawnPoints {
+        SpawnPoints {
+            point: self.point,
+            normal: self.normal,
+            above: offset_ray_origin(self.point, self.error, self.normal, self.normal),
+            below: offset_ray_origin(self.point, self.error, self.normal, -self.normal),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -143,6 +194,41 @@ mod tests {
         assert!(up.z > p.z + 1e-6 * 0.99);
         assert!(down.z < p.z - 1e-6 * 0.99);
         assert_eq!(up.x, p.x);
+    }
+
+    #[test]
+    fn spawn_points_give_the_rays_of_spawn_to() {
+        let mut rng = 0x1234_5678u32;
+        let mut next = || {
+            rng ^= rng << 13;
+            rng ^= rng >> 17;
+            rng ^= rng << 5;
+            rng as f32 / u32::MAX as f32 * 2.0 - 1.0
+        };
+        for _ in 0..2000 {
+            let normal = Vec3::new(next(), next(), next()).normalize_or(Vec3::Y);
+            let hit = Hit {
+                t: 1.0,
+                point: Vec3::new(next(), next(), next()) * 10.0,
+                error: Vec3::new(next().abs(), next().abs(), next().abs()) * 1e-5,
+                normal,
+                shading_normal: normal,
+                uv: Vec2::ZERO,
+                prim: 0,
+            };
+            let points = hit.spawn_points();
+            // Targets on both sides, and ones almost in the tangent plane.
+            let dir = Vec3::new(next(), next(), next());
+            let tangent = dir - dir.dot(normal) * normal;
+            for target in [
+                hit.point + dir * 5.0,
+                hit.point + tangent + normal * 1e-7,
+                hit.point + tangent - normal * 1e-7,
+                hit.point,
+            ] {
+                assert_eq!(points.ray_to(target), hit.spawn_to(target));
+            }
+        }
     }
 
     #[test]

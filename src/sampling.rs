@@ -154,17 +154,59 @@ impl SampleKey {
     /// separates different sets at the same point.
     #[inline]
     pub fn set_point(&self, method: Method, dimension: u64, index: u32, count: u32) -> Vec2 {
-        let h = hash(&[self.key, dimension, index as u64]);
+        self.point_set(method, dimension, count).point(index)
+    }
+
+    /// The set of `count` points that [`SampleKey::set_point`] draws from, with everything that
+    /// does not depend on the point's index worked out once: `set.point(i)` equals
+    /// `set_point(method, dimension, i, count)` bit for bit.
+    #[inline]
+    pub fn point_set(&self, method: Method, dimension: u64, count: u32) -> PointSet {
+        let count = count.max(1);
+        let side = (count as f64).sqrt() as u32;
+        PointSet {
+            method,
+            count,
+            // `hash(&[key, dimension, index])` is this state mixed with the index.
+            prefix: hash(&[self.key, dimension]),
+            side: if side * side == count { side } else { 0 },
+            shuffle: (hash(&[self.key, dimension]) & 0xffff_ffff) as u32,
+            sobol_seed: match method {
+                Method::Sobol => (hash(&[self.key, dimension, 0x50b0]) >> 32) as u32,
+                Method::Random | Method::Jittered => 0,
+            },
+        }
+    }
+}
+
+/// `count` sample points in the unit square for one shading point (see
+/// [`SampleKey::point_set`]).
+#[derive(Debug, Clone, Copy)]
+pub struct PointSet {
+    method: Method,
+    count: u32,
+    prefix: u64,
+    /// The side of the square grid of strata when `count` is a square, else 0.
+    side: u32,
+    shuffle: u32,
+    sobol_seed: u32,
+}
+
+impl PointSet {
+    /// Point `index` of the set.
+    #[inline]
+    pub fn point(&self, index: u32) -> Vec2 {
+        let h = mix64(self.prefix ^ (index as u64).wrapping_add(0x9e37_79b9_7f4a_7c15));
         let u = Vec2::new(to_unit(h), to_unit(mix64(h)));
-        match method {
+        match self.method {
             Method::Random => u,
-            Method::Jittered => stratum_point(
-                index,
-                count,
-                u,
-                (hash(&[self.key, dimension]) & 0xffff_ffff) as u32,
-            ),
-            Method::Sobol => sobol2(index, (hash(&[self.key, dimension, 0x50b0]) >> 32) as u32),
+            Method::Jittered if self.side > 0 => {
+                let k = self.side;
+                let (i, j) = (index % k, index / k);
+                Vec2::new((i as f32 + u.x) / k as f32, (j as f32 + u.y) / k as f32)
+            }
+            Method::Jittered => stratum_point(index, self.count, u, self.shuffle),
+            Method::Sobol => sobol2(index, self.sobol_seed),
         }
     }
 }
@@ -276,6 +318,35 @@ pub fn uniform_sphere(u: Vec2) -> Vec3 {
 
 #[cfg(test)]
 mod tests {
+
+    /// The point set's hoisted form against the per-point computation it replaces.
+    #[test]
+    fn point_set_equals_the_per_point_formula() {
+        let reference = |key: &SampleKey, method, dim: u64, i: u32, count: u32| {
+            let h = hash(&[key.key, dim, i as u64]);
+            let u = Vec2::new(to_unit(h), to_unit(mix64(h)));
+            match method {
+                Method::Random => u,
+                Method::Jittered => {
+                    stratum_point(i, count, u, (hash(&[key.key, dim]) & 0xffff_ffff) as u32)
+                }
+                Method::Sobol => sobol2(i, (hash(&[key.key, dim, 0x50b0]) >> 32) as u32),
+            }
+        };
+        let key = SampleKey::new(5, 9, 2, 4, 77).stream(3);
+        for method in [Method::Random, Method::Jittered, Method::Sobol] {
+            for count in [1, 2, 7, 16, 64, 100, 101] {
+                for dim in [0, 3] {
+                    let set = key.point_set(method, dim, count);
+                    for i in 0..count {
+                        let want = reference(&key, method, dim, i, count);
+                        assert_eq!(set.point(i), want, "{method:?} {count} {dim} {i}");
+                    }
+                }
+            }
+        }
+    }
+
     use super::*;
 
     #[test]

@@ -493,3 +493,71 @@ fn nan_and_zero_directions_hit_nothing() {
         }
     }
 }
+
+/// Shadow rays from one point to the points of a light box, tested against only the candidates
+/// of their beam, give the answer of testing every primitive, in every accelerator; and the
+/// beam does set primitives aside.
+#[test]
+fn beam_candidates_answer_every_shadow_ray_of_the_beam() {
+    use raytracer::accel::aabb::Aabb;
+    use raytracer::accel::Beam;
+    let mut prims = mixed_scene(300, 11);
+    prims.push(plane(Vec3::new(0.0, 1.0, 0.0), -4.5));
+    let accels = accelerators(&prims);
+    let list = Accel::List;
+    let mut rng = Rng(0xbea);
+    let (mut rays, mut blocked, mut kept, mut beams) = (0usize, 0usize, 0usize, 0usize);
+    let mut candidates = Vec::new();
+    for _ in 0..150 {
+        // A light: a flat quad or a small box, somewhere above the middle of the scene.
+        let c = rng.vec(Vec3::new(-3.0, 3.0, -3.0), Vec3::new(3.0, 6.0, 3.0));
+        let half = Vec3::new(
+            rng.range(0.1, 1.5),
+            rng.range(0.0, 0.3),
+            rng.range(0.1, 1.5),
+        );
+        let light = Aabb::new(c - half, c + half);
+        let apex = rng.vec(Vec3::splat(-4.0), Vec3::new(4.0, 2.0, 4.0));
+        // Origins within `offset` of the apex, as spawned shadow rays are.
+        let offset = 1e-4;
+        let Some(beam) = Beam::new(apex, &light, offset) else {
+            continue;
+        };
+        beams += 1;
+        for (name, accel) in accels
+            .iter()
+            .chain([("list".to_string(), Accel::List)].iter())
+        {
+            assert!(accel.beam_candidates(&prims, &beam, usize::MAX, &mut candidates));
+            kept += candidates.len();
+            for _ in 0..40 {
+                let origin = apex + rng.dir() * offset * rng.next();
+                let target = rng.vec(light.min, light.max);
+                let to = target - origin;
+                let dist = to.length();
+                let ray = Ray::new(origin, to / dist);
+                let t_max = dist * (1.0 - 1e-4);
+                let want = list.any(&prims, &ray, t_max, |_| true);
+                let got = accel.any_of(&prims, &candidates, &ray, t_max, |_| true);
+                assert_eq!(got, want, "{name}: {ray:?} to {t_max}");
+                rays += 1;
+                blocked += want as usize;
+            }
+        }
+    }
+    assert!(beams > 50, "{beams}");
+    assert!(blocked > rays / 20 && blocked < rays, "{blocked} of {rays}");
+    // On average far fewer candidates than primitives.
+    let per_beam = kept as f64 / (beams * (accels.len() + 1)) as f64;
+    assert!(per_beam < prims.len() as f64 / 4.0, "{per_beam}");
+    // Past the limit, the caller is told to query the whole accelerator.
+    let whole = Aabb::new(Vec3::splat(-4.0), Vec3::splat(4.0));
+    let beam = Beam::new(Vec3::new(0.0, -6.0, 0.0), &whole, 0.0).unwrap();
+    for (name, accel) in &accels {
+        assert!(
+            !accel.beam_candidates(&prims, &beam, 3, &mut candidates),
+            "{name}"
+        );
+    }
+    assert!(!Accel::List.beam_candidates(&prims, &beam, 3, &mut candidates));
+}

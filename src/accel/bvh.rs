@@ -26,9 +26,11 @@
 
 use glam::{Vec3A, Vec4, Vec4Swizzles};
 
-use super::aabb::slab;
+use super::aabb::{slab, Aabb};
+use super::beam::Beam;
+use super::may_hit;
 use crate::geometry::{Candidate, Primitive};
-use crate::math::next_float_up;
+use crate::math::{next_float_up, Vec3};
 use crate::ray::PreparedRay;
 
 /// Traversal stack entries. The builders keep every tree at most `MAX_SAH_DEPTH + 33` levels deep
@@ -671,18 +673,74 @@ impl Bvh {
         r: &PreparedRay,
         n: NodeRef,
         t_max: f32,
-        blocks: &impl Fn(u32) -> bool,
+        blocks: &mut impl FnMut(u32) -> bool,
     ) -> bool {
         let start = n.index as usize;
         self.order[start..start + n.count as usize]
             .iter()
             .any(|&p| {
-                blocks(p)
-                    && prims[p as usize]
-                        .shape
-                        .intersect_prepared(r, t_max)
-                        .is_some()
+                prims[p as usize]
+                    .shape
+                    .intersect_prepared(r, t_max)
+                    .is_some()
+                    && blocks(p)
             })
+    }
+
+    /// See [`crate::accel::Accel::beam_candidates`]: the unbounded primitives, then the
+    /// primitives of every leaf whose box and own bounds meet the beam.
+    pub fn beam_candidates(
+        &self,
+        prims: &[Primitive],
+        beam: &Beam,
+        limit: usize,
+        out: &mut Vec<u32>,
+    ) -> bool {
+        out.clear();
+        out.extend_from_slice(&self.unbounded);
+        let Some((lo, hi, root)) = self.root else {
+            return out.len() <= limit;
+        };
+        if !beam.may_hit_box(&Aabb::new(lo.into(), hi.into())) {
+            return out.len() <= limit;
+        }
+        let mut stack = [root; STACK_SIZE];
+        let mut top = 1usize;
+        while top > 0 {
+            top -= 1;
+            let n = stack[top];
+            if n.count > 0 {
+                let start = n.index as usize;
+                for &p in &self.order[start..start + n.count as usize] {
+                    if may_hit(beam, &prims[p as usize].shape) {
+                        if out.len() >= limit {
+                            return false;
+                        }
+                        out.push(p);
+                    }
+                }
+                continue;
+            }
+            let pair = &self.pairs[n.index as usize];
+            for side in 0..2 {
+                let b = Aabb::new(
+                    Vec3::new(pair.axes[0][side], pair.axes[1][side], pair.axes[2][side]),
+                    Vec3::new(
+                        pair.axes[0][2 + side],
+                        pair.axes[1][2 + side],
+                        pair.axes[2][2 + side],
+                    ),
+                );
+                if beam.may_hit_box(&b) {
+                    stack[top] = NodeRef {
+                        index: pair.index(side),
+                        count: pair.count(side),
+                    };
+                    top += 1;
+                }
+            }
+        }
+        out.len() <= limit
     }
 
     /// The closest hit with `0 < t < t_max` (least `t`, then least primitive index): the
@@ -803,14 +861,14 @@ impl Bvh {
         prims: &[Primitive],
         r: &PreparedRay,
         t_max: f32,
-        blocks: impl Fn(u32) -> bool,
+        mut blocks: impl FnMut(u32) -> bool,
     ) -> bool {
         if self.unbounded.iter().any(|&p| {
-            blocks(p)
-                && prims[p as usize]
-                    .shape
-                    .intersect_prepared(r, t_max)
-                    .is_some()
+            prims[p as usize]
+                .shape
+                .intersect_prepared(r, t_max)
+                .is_some()
+                && blocks(p)
         }) {
             return true;
         }
@@ -818,7 +876,7 @@ impl Bvh {
             return false;
         };
         if root.count > 0 {
-            return slab(lo, hi, r, t_max).0 && self.leaf_any(prims, r, root, t_max, &blocks);
+            return slab(lo, hi, r, t_max).0 && self.leaf_any(prims, r, root, t_max, &mut blocks);
         }
         match r.negative.bitmask() {
             0 => self.any_in::<false, false, false>(prims, r, t_max, blocks),
@@ -837,7 +895,7 @@ impl Bvh {
         prims: &[Primitive],
         r: &PreparedRay,
         t_max: f32,
-        blocks: impl Fn(u32) -> bool,
+        mut blocks: impl FnMut(u32) -> bool,
     ) -> bool {
         let Some((lo, hi, root)) = self.root else {
             return false;
@@ -879,7 +937,7 @@ impl Bvh {
                     n = c1;
                     continue;
                 }
-            } else if self.leaf_any(prims, r, n, t_max, &blocks) {
+            } else if self.leaf_any(prims, r, n, t_max, &mut blocks) {
                 return true;
             }
             if top == 0 {

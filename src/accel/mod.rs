@@ -14,11 +14,13 @@
 //! checks all of this bit for bit against [`Accel::List`] on adversarial rays.
 
 pub mod aabb;
+pub mod beam;
 pub mod bvh;
 
+pub use beam::Beam;
 pub use bvh::{Bvh, BvhOptions, BvhStats, Split};
 
-use crate::geometry::{Candidate, Primitive};
+use crate::geometry::{Candidate, Primitive, Shape};
 use crate::ray::{PreparedRay, Ray};
 
 /// Which accelerator to build.
@@ -151,14 +153,16 @@ impl Accel {
     }
 
     /// Whether anything is hit with `0 < t < t_max` for which `blocks(primitive)` holds. Stops at
-    /// the first such hit.
+    /// the first such hit. `blocks` is called only for primitives the ray hits, in no particular
+    /// order, and may note what it is shown (a shadow ray notes the transmissive surfaces it
+    /// passes).
     #[inline]
     pub fn any(
         &self,
         prims: &[Primitive],
         ray: &Ray,
         t_max: f32,
-        blocks: impl Fn(u32) -> bool,
+        mut blocks: impl FnMut(u32) -> bool,
     ) -> bool {
         if t_max.is_nan() || t_max <= 0.0 {
             return false;
@@ -168,8 +172,71 @@ impl Accel {
             Accel::List => prims
                 .iter()
                 .enumerate()
-                .any(|(i, p)| blocks(i as u32) && p.shape.intersect_prepared(&r, t_max).is_some()),
+                .any(|(i, p)| p.shape.intersect_prepared(&r, t_max).is_some() && blocks(i as u32)),
             Accel::Bvh(b) => b.any(prims, &r, t_max, blocks),
         }
+    }
+
+    /// The primitives some ray of `beam` may hit (see [`Beam`]), written to `out`: every
+    /// unbounded primitive and every bounded one whose bounding ball meets the beam. Returns
+    /// `false`, with `out` of no use, when there are more than `limit`: the caller then queries
+    /// the whole accelerator, as cheap as a long list.
+    pub fn beam_candidates(
+        &self,
+        prims: &[Primitive],
+        beam: &Beam,
+        limit: usize,
+        out: &mut Vec<u32>,
+    ) -> bool {
+        out.clear();
+        match self {
+            Accel::List => {
+                for (i, p) in prims.iter().enumerate() {
+                    if may_hit(beam, &p.shape) {
+                        if out.len() == limit {
+                            return false;
+                        }
+                        out.push(i as u32);
+                    }
+                }
+                true
+            }
+            Accel::Bvh(b) => b.beam_candidates(prims, beam, limit, out),
+        }
+    }
+
+    /// [`Accel::any`] over `candidates` only, gathered by [`Accel::beam_candidates`] for a beam
+    /// that holds `ray` up to `t_max`: then the answer is the one over every primitive.
+    #[inline]
+    pub fn any_of(
+        &self,
+        prims: &[Primitive],
+        candidates: &[u32],
+        ray: &Ray,
+        t_max: f32,
+        mut blocks: impl FnMut(u32) -> bool,
+    ) -> bool {
+        if t_max.is_nan() || t_max <= 0.0 {
+            return false;
+        }
+        let r = PreparedRay::new(ray);
+        candidates.iter().any(|&i| {
+            prims[i as usize]
+                .shape
+                .intersect_prepared(&r, t_max)
+                .is_some()
+                && blocks(i)
+        })
+    }
+}
+
+/// Whether some ray of `beam` may hit `shape`: spheres by their own ball, other bounded shapes by
+/// their box's, unbounded ones always.
+#[inline]
+pub(crate) fn may_hit(beam: &Beam, shape: &Shape) -> bool {
+    match shape {
+        Shape::Sphere(s) => beam.may_hit_ball(s.center, s.radius.abs()),
+        Shape::Plane(_) => true,
+        Shape::Triangle(_) | Shape::Cylinder(_) => beam.may_hit_box(&shape.bounds()),
     }
 }

@@ -106,6 +106,13 @@ impl Cylinder {
     }
 
     pub fn hit(&self, ray: &Ray, c: Candidate, prim: u32) -> Hit {
+        self.hit_with(ray, c, prim, true)
+    }
+
+    /// The hit record; the side's texture coordinates (an arctangent) are worked out only when
+    /// `want_uv` is set, and are zero otherwise.
+    #[inline]
+    pub fn hit_with(&self, ray: &Ray, c: Candidate, prim: u32, want_uv: bool) -> Hit {
         let p = ray.at(c.t);
         let frame = self.frame();
         let local = self.to_local(frame, p - self.center);
@@ -117,8 +124,12 @@ impl Cylinder {
             normal = (radial.x * frame.0 + radial.y * frame.1).normalize();
             let z = local.z.clamp(-h, h);
             point = self.center + normal * r + self.axis * z;
-            let phi = radial.y.atan2(radial.x) / std::f32::consts::TAU;
-            uv = Vec2::new(phi - phi.floor(), (h - z) / (2.0 * h));
+            uv = if want_uv {
+                let phi = radial.y.atan2(radial.x) / std::f32::consts::TAU;
+                Vec2::new(phi - phi.floor(), (h - z) / (2.0 * h))
+            } else {
+                Vec2::ZERO
+            };
         } else {
             let sign = if c.aux[0] == TOP { 1.0 } else { -1.0 };
             normal = self.axis * sign;

@@ -111,10 +111,19 @@ pub struct Primitive {
 impl Primitive {
     /// The full hit record of a candidate found by [`Shape::intersect`] on this primitive.
     pub fn hit(&self, ray: &Ray, c: Candidate, prim: u32, meshes: &[Mesh]) -> Hit {
+        self.hit_with(ray, c, prim, meshes, true)
+    }
+
+    /// The hit record, with texture coordinates only where `uv` is set: without them
+    /// [`Hit::uv`] is zero for spheres and cylinders, whose coordinates cost inverse
+    /// trigonometric functions (triangles and planes fill them in either way: they are a few
+    /// multiplications).
+    #[inline]
+    pub fn hit_with(&self, ray: &Ray, c: Candidate, prim: u32, meshes: &[Mesh], uv: bool) -> Hit {
         match &self.shape {
-            Shape::Sphere(s) => s.hit(ray, c, prim),
+            Shape::Sphere(s) => s.hit_with(ray, c, prim, uv),
             Shape::Triangle(t) => t.hit(c, prim, &meshes[t.mesh as usize]),
-            Shape::Cylinder(cy) => cy.hit(ray, c, prim),
+            Shape::Cylinder(cy) => cy.hit_with(ray, c, prim, uv),
             Shape::Plane(p) => p.hit(ray, c, prim),
         }
     }

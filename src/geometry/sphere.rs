@@ -72,6 +72,13 @@ impl Sphere {
     }
 
     pub fn hit(&self, ray: &Ray, c: Candidate, prim: u32) -> Hit {
+        self.hit_with(ray, c, prim, true)
+    }
+
+    /// The hit record; its texture coordinates (two inverse trigonometric functions) are worked
+    /// out only when `uv` is set, and are zero otherwise.
+    #[inline]
+    pub fn hit_with(&self, ray: &Ray, c: Candidate, prim: u32, uv: bool) -> Hit {
         let local = ray.at(c.t) - self.center;
         // Re-project onto the surface to remove the error accumulated along the ray.
         let n = local.normalize_or(self.pole);
@@ -80,11 +87,7 @@ impl Sphere {
         // |local| error of the re-projection (pbrt-v4 §6.8.5: γ(5)), plus the rounding of the
         // addition of the centre.
         let error = local.abs() * gamma(5) + (self.center.abs() + local.abs()) * gamma(1);
-        let cos_theta = n.dot(self.pole).clamp(-1.0, 1.0);
-        let east = self.pole.cross(self.meridian);
-        let phi = n.dot(east).atan2(n.dot(self.meridian));
-        let u = phi / std::f32::consts::TAU;
-        let uv = Vec2::new(u - u.floor(), cos_theta.acos() / std::f32::consts::PI);
+        let uv = if uv { self.uv(n) } else { Vec2::ZERO };
         Hit {
             t: c.t,
             point,
@@ -94,6 +97,16 @@ impl Sphere {
             uv,
             prim,
         }
+    }
+
+    /// Texture coordinates of the point with outward unit normal `n`.
+    #[inline]
+    pub fn uv(&self, n: Vec3) -> Vec2 {
+        let cos_theta = n.dot(self.pole).clamp(-1.0, 1.0);
+        let east = self.pole.cross(self.meridian);
+        let phi = n.dot(east).atan2(n.dot(self.meridian));
+        let u = phi / std::f32::consts::TAU;
+        Vec2::new(u - u.floor(), cos_theta.acos() / std::f32::consts::PI)
     }
 }
 
