@@ -140,7 +140,8 @@ impl SampleKey {
             Method::Jittered => {
                 let key = (hash(&[self.pixel_key, dimension]) & 0xffff_ffff) as u32;
                 let stratum = permute(self.sample, self.spp, key);
-                stratum_point(stratum, self.spp, u, key.rotate_left(16))
+                let spp = self.spp.max(1);
+                stratum_point(stratum, spp, square_side(spp), u, key.rotate_left(16))
             }
             Method::Sobol => sobol2(
                 self.sample,
@@ -163,14 +164,13 @@ impl SampleKey {
     #[inline]
     pub fn point_set(&self, method: Method, dimension: u64, count: u32) -> PointSet {
         let count = count.max(1);
-        let side = (count as f64).sqrt() as u32;
         PointSet {
             method,
             count,
-            // `hash(&[key, dimension, index])` is this state mixed with the index.
+            // `hash(&[key, dimension, index])` is this state mixed with the index; its low 32
+            // bits are the N-rooks shuffle.
             prefix: hash(&[self.key, dimension]),
-            side: if side * side == count { side } else { 0 },
-            shuffle: (hash(&[self.key, dimension]) & 0xffff_ffff) as u32,
+            side: square_side(count),
             sobol_seed: match method {
                 Method::Sobol => (hash(&[self.key, dimension, 0x50b0]) >> 32) as u32,
                 Method::Random | Method::Jittered => 0,
@@ -186,9 +186,8 @@ pub struct PointSet {
     method: Method,
     count: u32,
     prefix: u64,
-    /// The side of the square grid of strata when `count` is a square, else 0.
+    /// [`square_side`] of `count`.
     side: u32,
-    shuffle: u32,
     sobol_seed: u32,
 }
 
@@ -200,12 +199,7 @@ impl PointSet {
         let u = Vec2::new(to_unit(h), to_unit(mix64(h)));
         match self.method {
             Method::Random => u,
-            Method::Jittered if self.side > 0 => {
-                let k = self.side;
-                let (i, j) = (index % k, index / k);
-                Vec2::new((i as f32 + u.x) / k as f32, (j as f32 + u.y) / k as f32)
-            }
-            Method::Jittered => stratum_point(index, self.count, u, self.shuffle),
+            Method::Jittered => stratum_point(index, self.count, self.side, u, self.prefix as u32),
             Method::Sobol => sobol2(index, self.sobol_seed),
         }
     }
@@ -230,12 +224,22 @@ pub fn sobol2(index: u32, seed: u32) -> Vec2 {
     )
 }
 
-/// The point of stratum `index` out of `count`, offset by `jitter ∈ [0,1)²` inside its stratum.
-/// Perfect squares use a `k×k` grid; other counts use N-rooks with columns shuffled by `shuffle`.
-fn stratum_point(index: u32, count: u32, jitter: Vec2, shuffle: u32) -> Vec2 {
-    let count = count.max(1);
+/// The side `k` of the `k×k` grid of strata when `count` is a perfect square, else 0.
+fn square_side(count: u32) -> u32 {
     let k = (count as f64).sqrt() as u32;
     if k * k == count {
+        k
+    } else {
+        0
+    }
+}
+
+/// The point of stratum `index` out of `count` (at least 1), offset by `jitter ∈ [0,1)²` inside
+/// its stratum. Perfect squares (`side` = [`square_side`] of `count`, nonzero) use a `k×k` grid;
+/// other counts use N-rooks with columns shuffled by `shuffle`.
+fn stratum_point(index: u32, count: u32, side: u32, jitter: Vec2, shuffle: u32) -> Vec2 {
+    let k = side;
+    if k > 0 {
         let (i, j) = (index % k, index / k);
         Vec2::new(
             (i as f32 + jitter.x) / k as f32,
@@ -328,7 +332,8 @@ mod tests {
             match method {
                 Method::Random => u,
                 Method::Jittered => {
-                    stratum_point(i, count, u, (hash(&[key.key, dim]) & 0xffff_ffff) as u32)
+                    let shuffle = (hash(&[key.key, dim]) & 0xffff_ffff) as u32;
+                    stratum_point(i, count, square_side(count), u, shuffle)
                 }
                 Method::Sobol => sobol2(i, (hash(&[key.key, dim, 0x50b0]) >> 32) as u32),
             }

@@ -28,7 +28,7 @@ use glam::{Vec3A, Vec4, Vec4Swizzles};
 
 use super::aabb::{slab, Aabb};
 use super::beam::Beam;
-use super::may_hit;
+use super::{any_among, gather};
 use crate::geometry::{Candidate, Primitive};
 use crate::math::{next_float_up, Vec3};
 use crate::ray::PreparedRay;
@@ -676,15 +676,13 @@ impl Bvh {
         blocks: &mut impl FnMut(u32) -> bool,
     ) -> bool {
         let start = n.index as usize;
-        self.order[start..start + n.count as usize]
-            .iter()
-            .any(|&p| {
-                prims[p as usize]
-                    .shape
-                    .intersect_prepared(r, t_max)
-                    .is_some()
-                    && blocks(p)
-            })
+        any_among(
+            prims,
+            &self.order[start..start + n.count as usize],
+            r,
+            t_max,
+            blocks,
+        )
     }
 
     /// See [`crate::accel::Accel::beam_candidates`]: the unbounded primitives, then the
@@ -697,12 +695,14 @@ impl Bvh {
         out: &mut Vec<u32>,
     ) -> bool {
         out.clear();
-        out.extend_from_slice(&self.unbounded);
+        if !gather(beam, prims, self.unbounded.iter().copied(), limit, out) {
+            return false;
+        }
         let Some((lo, hi, root)) = self.root else {
-            return out.len() <= limit;
+            return true;
         };
         if !beam.may_hit_box(&Aabb::new(lo.into(), hi.into())) {
-            return out.len() <= limit;
+            return true;
         }
         let mut stack = [root; STACK_SIZE];
         let mut top = 1usize;
@@ -711,13 +711,9 @@ impl Bvh {
             let n = stack[top];
             if n.count > 0 {
                 let start = n.index as usize;
-                for &p in &self.order[start..start + n.count as usize] {
-                    if may_hit(beam, &prims[p as usize].shape) {
-                        if out.len() >= limit {
-                            return false;
-                        }
-                        out.push(p);
-                    }
+                let leaf = &self.order[start..start + n.count as usize];
+                if !gather(beam, prims, leaf.iter().copied(), limit, out) {
+                    return false;
                 }
                 continue;
             }
@@ -740,7 +736,7 @@ impl Bvh {
                 }
             }
         }
-        out.len() <= limit
+        true
     }
 
     /// The closest hit with `0 < t < t_max` (least `t`, then least primitive index): the
@@ -863,13 +859,7 @@ impl Bvh {
         t_max: f32,
         mut blocks: impl FnMut(u32) -> bool,
     ) -> bool {
-        if self.unbounded.iter().any(|&p| {
-            prims[p as usize]
-                .shape
-                .intersect_prepared(r, t_max)
-                .is_some()
-                && blocks(p)
-        }) {
+        if any_among(prims, &self.unbounded, r, t_max, &mut blocks) {
             return true;
         }
         let Some((lo, hi, root)) = self.root else {

@@ -190,17 +190,7 @@ impl Accel {
     ) -> bool {
         out.clear();
         match self {
-            Accel::List => {
-                for (i, p) in prims.iter().enumerate() {
-                    if may_hit(beam, &p.shape) {
-                        if out.len() == limit {
-                            return false;
-                        }
-                        out.push(i as u32);
-                    }
-                }
-                true
-            }
+            Accel::List => gather(beam, prims, 0..prims.len() as u32, limit, out),
             Accel::Bvh(b) => b.beam_candidates(prims, beam, limit, out),
         }
     }
@@ -219,15 +209,53 @@ impl Accel {
         if t_max.is_nan() || t_max <= 0.0 {
             return false;
         }
-        let r = PreparedRay::new(ray);
-        candidates.iter().any(|&i| {
-            prims[i as usize]
-                .shape
-                .intersect_prepared(&r, t_max)
-                .is_some()
-                && blocks(i)
-        })
+        any_among(
+            prims,
+            candidates,
+            &PreparedRay::new(ray),
+            t_max,
+            &mut blocks,
+        )
     }
+}
+
+/// Whether one of the primitives `indices` accepted by `blocks` is hit with `0 < t < t_max`
+/// (what [`Accel::any`] asks of a leaf, of the unbounded list or of a beam's candidates).
+#[inline]
+pub(crate) fn any_among(
+    prims: &[Primitive],
+    indices: &[u32],
+    r: &PreparedRay,
+    t_max: f32,
+    blocks: &mut impl FnMut(u32) -> bool,
+) -> bool {
+    indices.iter().any(|&i| {
+        prims[i as usize]
+            .shape
+            .intersect_prepared(r, t_max)
+            .is_some()
+            && blocks(i)
+    })
+}
+
+/// Appends to `out` those of the primitives `indices` that some ray of `beam` may hit; `false`
+/// as soon as that would make `out` longer than `limit`.
+pub(crate) fn gather(
+    beam: &Beam,
+    prims: &[Primitive],
+    indices: impl IntoIterator<Item = u32>,
+    limit: usize,
+    out: &mut Vec<u32>,
+) -> bool {
+    for i in indices {
+        if may_hit(beam, &prims[i as usize].shape) {
+            if out.len() >= limit {
+                return false;
+            }
+            out.push(i);
+        }
+    }
+    true
 }
 
 /// Whether some ray of `beam` may hit `shape`: spheres by their own ball, other bounded shapes by
