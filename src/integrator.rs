@@ -526,10 +526,11 @@ impl<'a> Tracer<'a> {
             if surface.contains(&p) {
                 return false;
             }
-            let kt = scene.materials[prims[p as usize].material as usize].kt;
-            crosses |= kt > 0.0;
-            clear &= kt == 1.0;
-            kt <= 0.0
+            let material = &scene.materials[prims[p as usize].material as usize];
+            let transmissive = material.is_transmissive();
+            crosses |= transmissive;
+            clear &= material.kt == 1.0;
+            !transmissive
         });
         if opaque {
             return 0.0;
