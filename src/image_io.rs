@@ -22,7 +22,6 @@ use std::io::{self, BufRead, BufReader, Read, Seek};
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
-use image::codecs::openexr::OpenExrEncoder;
 use image::codecs::png::PngEncoder;
 use image::{ColorType, ExtendedColorType, ImageDecoder, ImageEncoder, ImageReader, Limits};
 
@@ -302,18 +301,35 @@ pub fn encode_image(
                 .map_err(encode_err)?;
         }
         OutputFormat::Exr => {
-            let floats: Vec<u8> = film
-                .pixels
-                .iter()
-                .flat_map(|&p| (p * exposure).to_array())
-                .flat_map(f32::to_ne_bytes)
-                .collect();
-            OpenExrEncoder::new(io::Cursor::new(&mut out))
-                .write_image(&floats, width, height, ExtendedColorType::Rgb32F)
-                .map_err(encode_err)?;
+            let channel = |c: usize| {
+                let values = film.pixels.iter().map(|p| p[c] * exposure).collect();
+                exr::prelude::AnyChannel::new(
+                    ["R", "G", "B"][c],
+                    exr::prelude::FlatSamples::F32(values),
+                )
+            };
+            let layer = exr::prelude::Layer::new(
+                (width as usize, height as usize),
+                exr::prelude::LayerAttributes::default(),
+                exr_encoding(),
+                exr::prelude::AnyChannels::sort(vec![channel(0), channel(1), channel(2)].into()),
+            );
+            use exr::prelude::WritableImage;
+            exr::prelude::Image::from_layer(layer)
+                .write()
+                .to_buffered(io::Cursor::new(&mut out))
+                .map_err(|e| {
+                    encode_err(image::ImageError::IoError(io::Error::other(e.to_string())))
+                })?;
         }
     }
     Ok(out)
+}
+
+/// How EXR files are written: ZIP-compressed scan lines in increasing order, so the same pixels
+/// always give the same bytes (blocks compressed in parallel are still written in order).
+pub fn exr_encoding() -> exr::prelude::Encoding {
+    exr::prelude::Encoding::SMALL_LOSSLESS
 }
 
 /// Reads PNG, JPEG, PPM (P3 ascii and P6 binary) or EXR into a linear Film:

@@ -16,6 +16,7 @@ pub mod light;
 pub mod material;
 pub mod math;
 pub mod metric;
+pub mod parts;
 pub mod ray;
 pub mod render;
 pub mod sampling;

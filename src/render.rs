@@ -3,8 +3,12 @@
 //! an image too large for the machine is an error ([`RenderError`]) rather than an abort.
 //!
 //! Output is independent of the thread count and tile order: each pixel's samples depend only on
-//! `(pixel, sample, dimension, seed)` and pixels are written to fixed places.
+//! `(pixel, sample, dimension, seed)`, they are summed exactly ([`PixelSum`]), and pixels are
+//! written to fixed places. A render can be cut into parts, a rectangle of pixels
+//! ([`RenderOptions::crop`]) and a range of each pixel's samples ([`RenderOptions::samples`]),
+//! whose exact sums ([`RenderOptions::keep_sums`]) add up to the whole render bit for bit.
 
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -12,7 +16,8 @@ use std::time::{Duration, Instant};
 use rayon::prelude::*;
 
 use crate::accel::{Accel, AccelKind};
-use crate::film::Film;
+use crate::film::sum::MAX_SAMPLES;
+use crate::film::{Film, PixelRect, PixelSum};
 use crate::integrator::{RayCounts, TraceOptions, Tracer};
 use crate::math::{Vec2, Vec3};
 use crate::sampling::{Method, SampleKey};
@@ -41,6 +46,13 @@ pub struct RenderOptions {
     /// cancelled and must not be written. Looked at before every camera sample, shading point
     /// and batch of shadow rays, so a render stops within a few hundred rays per thread.
     pub cancel: Option<Arc<AtomicBool>>,
+    /// Trace only these pixels of the image (default: all). The film then holds just them.
+    pub crop: Option<PixelRect>,
+    /// Trace only these of each pixel's `spp` samples (default: all). `spp` stays the total, so
+    /// the samples traced are the very ones of the whole render.
+    pub samples: Option<Range<u32>>,
+    /// Keep each pixel's exact sample sums ([`RenderOutput::sums`]), for parts to be merged.
+    pub keep_sums: bool,
 }
 
 impl Default for RenderOptions {
@@ -55,14 +67,29 @@ impl Default for RenderOptions {
             trace: TraceOptions::default(),
             progress: false,
             cancel: None,
+            crop: None,
+            samples: None,
+            keep_sums: false,
         }
+    }
+}
+
+impl RenderOptions {
+    /// The samples of each pixel a render with these options traces.
+    pub fn sample_range(&self) -> Range<u32> {
+        self.samples.clone().unwrap_or(0..self.spp.max(1))
     }
 }
 
 /// What a render produced and how long it took.
 #[derive(Debug, Clone)]
 pub struct RenderOutput {
+    /// The mean of the samples traced, for the pixels traced (the crop, else the whole image).
     pub film: Film,
+    /// Where the film lies in the whole image.
+    pub window: PixelRect,
+    /// The exact sums behind `film`, row-major like it, when [`RenderOptions::keep_sums`].
+    pub sums: Option<Vec<PixelSum>>,
     pub counts: RayCounts,
     pub build_time: Duration,
     pub render_time: Duration,
@@ -75,27 +102,33 @@ pub struct RenderOutput {
 pub enum RenderError {
     /// The film and the buffer the tiles are traced into cannot be allocated.
     #[error(
-        "an image of {width}×{height} needs {} GiB of memory for its pixels, more than can be allocated",
-        gib(*width, *height)
+        "an image of {width}×{height} needs {gib:.1} GiB of memory for its pixels, more than can be allocated"
     )]
-    TooLarge { width: u32, height: u32 },
-}
-
-/// Memory of a render's two pixel buffers (the film and the tiles), in GiB.
-fn gib(width: u32, height: u32) -> String {
-    let bytes = 2.0 * width as f64 * height as f64 * std::mem::size_of::<Vec3>() as f64;
-    format!("{:.1}", bytes / (1u64 << 30) as f64)
+    TooLarge { width: u32, height: u32, gib: f64 },
+    /// The crop does not lie inside the image.
+    #[error("the crop {crop} is not inside the {width}×{height} image")]
+    CropOutside {
+        crop: PixelRect,
+        width: u32,
+        height: u32,
+    },
+    /// The sample range is empty or reaches past the samples per pixel.
+    #[error("the sample range {}..{} is not a non-empty part of 0..{spp}", .range.start, .range.end)]
+    SampleRange { range: Range<u32>, spp: u32 },
+    /// More samples per pixel than an exact sum holds.
+    #[error("{spp} samples per pixel is more than the {MAX_SAMPLES} a render can sum")]
+    TooManySamples { spp: u32 },
 }
 
 /// Renders `scene` with `options`.
 pub fn render(scene: &Scene, options: &RenderOptions) -> Result<RenderOutput, RenderError> {
-    let buffers = Buffers::new(scene)?;
+    let plan = Plan::new(scene, options)?;
     let start = Instant::now();
     let accel = Accel::build(&scene.primitives, options.accel, options.leaf_size);
     let build_time = start.elapsed();
     Ok(RenderOutput {
         build_time,
-        ..render_into(scene, &accel, options, buffers, None)
+        ..plan.run(scene, &accel, options, None)
     })
 }
 
@@ -106,13 +139,7 @@ pub fn render_with_accel(
     accel: &Accel,
     options: &RenderOptions,
 ) -> Result<RenderOutput, RenderError> {
-    Ok(render_into(
-        scene,
-        accel,
-        options,
-        Buffers::new(scene)?,
-        None,
-    ))
+    Ok(Plan::new(scene, options)?.run(scene, accel, options, None))
 }
 
 /// [`render_with_accel`], adding one to `pixels_done` as each pixel is finished (from the worker
@@ -123,112 +150,280 @@ pub fn render_with_accel_counting(
     options: &RenderOptions,
     pixels_done: &AtomicU64,
 ) -> Result<RenderOutput, RenderError> {
-    let buffers = Buffers::new(scene)?;
-    Ok(render_into(
-        scene,
-        accel,
-        options,
-        buffers,
-        Some(pixels_done),
-    ))
+    Ok(Plan::new(scene, options)?.run(scene, accel, options, Some(pixels_done)))
 }
 
-/// The memory a render writes pixels to, allocated before anything is traced.
-struct Buffers {
-    film: Film,
-    /// The image in bands of `TILE` rows, each band its tiles one after the other, each tile its
-    /// rows: every tile is one contiguous slice a thread can own.
-    tiles: Vec<Vec3>,
+/// What a pixel of the tile buffers holds: the mean of its samples, or their exact sums.
+trait TracedPixel: Copy + Default + Send + Sync {
+    fn from_sum(sum: &PixelSum, count: u32) -> Self;
 }
 
-impl Buffers {
-    fn new(scene: &Scene) -> Result<Buffers, RenderError> {
-        let (width, height) = (scene.camera.width, scene.camera.height);
-        let too_large = || RenderError::TooLarge { width, height };
-        let film = Film::try_new(width, height).ok_or_else(too_large)?;
-        let tiles = Film::try_new(width, height).ok_or_else(too_large)?.pixels;
-        Ok(Buffers { film, tiles })
+impl TracedPixel for Vec3 {
+    fn from_sum(sum: &PixelSum, count: u32) -> Vec3 {
+        sum.mean(count)
     }
 }
 
-fn render_into(
-    scene: &Scene,
-    accel: &Accel,
-    options: &RenderOptions,
-    buffers: Buffers,
-    pixels_done: Option<&AtomicU64>,
-) -> RenderOutput {
-    let Buffers {
-        mut film,
-        mut tiles,
-    } = buffers;
-    let (w, h) = (scene.camera.width as usize, scene.camera.height as usize);
-    let tile = TILE as usize;
-    let bar = if options.progress {
-        let bar = indicatif::ProgressBar::new((w.div_ceil(tile) * h.div_ceil(tile)) as u64);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{spinner} [{elapsed_precise}] {wide_bar} {percent}% (eta {eta})",
-            )
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        bar
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
+impl TracedPixel for PixelSum {
+    fn from_sum(sum: &PixelSum, _count: u32) -> PixelSum {
+        *sum
+    }
+}
 
-    let start = Instant::now();
-    let band = w * tile;
-    let counts = if band == 0 || h == 0 {
-        RayCounts::default()
-    } else {
-        tiles
+/// `len` default values, or `None` when they cannot be allocated.
+fn try_buffer<T: Clone + Default>(len: u64) -> Option<Vec<T>> {
+    let len = usize::try_from(len).ok()?;
+    let mut v = Vec::new();
+    v.try_reserve_exact(len).ok()?;
+    v.resize(len, T::default());
+    Some(v)
+}
+
+/// A checked render: its window and samples, and the memory it writes pixels to, allocated
+/// before anything is traced.
+struct Plan {
+    window: PixelRect,
+    samples: Range<u32>,
+    spp: u32,
+    buffers: Buffers,
+}
+
+enum Buffers {
+    Means {
+        film: Vec<Vec3>,
+        tiles: Vec<Vec3>,
+    },
+    Sums {
+        sums: Vec<PixelSum>,
+        tiles: Vec<PixelSum>,
+        film: Vec<Vec3>,
+    },
+}
+
+impl Plan {
+    fn new(scene: &Scene, options: &RenderOptions) -> Result<Plan, RenderError> {
+        let (width, height) = (scene.camera.width, scene.camera.height);
+        let full = PixelRect::full(width, height);
+        let window = options.crop.unwrap_or(full);
+        if window.is_empty() || !window.within(&full) {
+            return Err(RenderError::CropOutside {
+                crop: window,
+                width,
+                height,
+            });
+        }
+        let spp = options.spp.max(1);
+        if spp > MAX_SAMPLES {
+            return Err(RenderError::TooManySamples { spp });
+        }
+        let samples = options.sample_range();
+        if samples.start >= samples.end || samples.end > spp {
+            return Err(RenderError::SampleRange {
+                range: samples,
+                spp,
+            });
+        }
+        let n = window.area();
+        let per_pixel = if options.keep_sums {
+            2 * std::mem::size_of::<PixelSum>() + std::mem::size_of::<Vec3>()
+        } else {
+            2 * std::mem::size_of::<Vec3>()
+        };
+        let too_large = || RenderError::TooLarge {
+            width: window.width(),
+            height: window.height(),
+            gib: n as f64 * per_pixel as f64 / (1u64 << 30) as f64,
+        };
+        let buffers = if options.keep_sums {
+            Buffers::Sums {
+                sums: try_buffer(n).ok_or_else(too_large)?,
+                tiles: try_buffer(n).ok_or_else(too_large)?,
+                film: try_buffer(n).ok_or_else(too_large)?,
+            }
+        } else {
+            Buffers::Means {
+                film: try_buffer(n).ok_or_else(too_large)?,
+                tiles: try_buffer(n).ok_or_else(too_large)?,
+            }
+        };
+        Ok(Plan {
+            window,
+            samples,
+            spp,
+            buffers,
+        })
+    }
+
+    fn run(
+        self,
+        scene: &Scene,
+        accel: &Accel,
+        options: &RenderOptions,
+        pixels_done: Option<&AtomicU64>,
+    ) -> RenderOutput {
+        let start = Instant::now();
+        let Plan {
+            window,
+            samples,
+            spp,
+            buffers,
+        } = self;
+        let work = Work {
+            scene,
+            accel,
+            options,
+            window,
+            samples: samples.clone(),
+            spp,
+            pixels_done,
+        };
+        let count = samples.end - samples.start;
+        let (pixels, sums, counts, cancelled) = match buffers {
+            Buffers::Means { mut film, tiles } => {
+                let (counts, cancelled) = work.trace(tiles, &mut film);
+                (film, None, counts, cancelled)
+            }
+            Buffers::Sums {
+                mut sums,
+                tiles,
+                mut film,
+            } => {
+                let (counts, cancelled) = work.trace(tiles, &mut sums);
+                film.par_iter_mut()
+                    .zip(sums.par_iter())
+                    .for_each(|(m, s)| *m = s.mean(count));
+                (film, Some(sums), counts, cancelled)
+            }
+        };
+        RenderOutput {
+            film: Film::from_pixels(window.width(), window.height(), pixels),
+            window,
+            sums,
+            counts,
+            build_time: Duration::ZERO,
+            render_time: start.elapsed(),
+            cancelled,
+        }
+    }
+}
+
+/// One render's inputs, shared by its tiles.
+struct Work<'a> {
+    scene: &'a Scene,
+    accel: &'a Accel,
+    options: &'a RenderOptions,
+    window: PixelRect,
+    samples: Range<u32>,
+    spp: u32,
+    pixels_done: Option<&'a AtomicU64>,
+}
+
+impl Work<'_> {
+    /// Traces every tile of the window into `tiles` (each tile one contiguous slice a thread can
+    /// own: bands of `TILE` rows, each band its tiles one after the other, each tile its rows),
+    /// then copies them into `out`, row-major over the window. Returns the rays traced and
+    /// whether the render was cancelled (`out` is then incomplete).
+    fn trace<T: TracedPixel>(&self, mut tiles: Vec<T>, out: &mut [T]) -> (RayCounts, bool) {
+        let (w, h) = (self.window.width() as usize, self.window.height() as usize);
+        let tile = TILE as usize;
+        let bar = if self.options.progress {
+            let bar = indicatif::ProgressBar::new((w.div_ceil(tile) * h.div_ceil(tile)) as u64);
+            bar.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "{spinner} [{elapsed_precise}] {wide_bar} {percent}% (eta {eta})",
+                )
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            );
+            bar
+        } else {
+            indicatif::ProgressBar::hidden()
+        };
+
+        let band = w * tile;
+        let (x_origin, y_origin) = (self.window.x0, self.window.y0);
+        let counts = tiles
             .par_chunks_mut(band)
             .enumerate()
             .flat_map(|(ty, rows)| {
                 let th = rows.len() / w;
                 rows.par_chunks_mut(tile * th)
                     .enumerate()
-                    .map(move |(tx, pixels)| ((tx * tile) as u32, (ty * tile) as u32, pixels))
+                    .map(move |(tx, pixels)| {
+                        let x0 = x_origin + (tx * tile) as u32;
+                        let y0 = y_origin + (ty * tile) as u32;
+                        (x0, y0, pixels)
+                    })
             })
             .map(|(x0, y0, pixels)| {
-                if cancelled(options) {
+                if cancelled(self.options) {
                     return RayCounts::default();
                 }
-                let counts = render_tile(scene, accel, options, x0, y0, pixels, pixels_done);
+                let counts = self.tile(x0, y0, pixels);
                 bar.inc(1);
                 counts
             })
             .reduce(RayCounts::default, |mut a, b| {
                 a.add(&b);
                 a
-            })
-    };
-    bar.finish_and_clear();
-
-    let cancelled = cancelled(options);
-    if !cancelled && band > 0 {
-        film.pixels
-            .par_chunks_mut(band)
-            .zip(tiles.par_chunks(band))
-            .for_each(|(rows, by_tile)| {
-                let th = rows.len() / w;
-                let mut at = 0;
-                for x0 in (0..w).step_by(tile) {
-                    let tw = tile.min(w - x0);
-                    for y in 0..th {
-                        rows[y * w + x0..][..tw].copy_from_slice(&by_tile[at..at + tw]);
-                        at += tw;
-                    }
-                }
             });
+        bar.finish_and_clear();
+
+        let cancelled = cancelled(self.options);
+        if !cancelled {
+            out.par_chunks_mut(band)
+                .zip(tiles.par_chunks(band))
+                .for_each(|(rows, by_tile)| {
+                    let th = rows.len() / w;
+                    let mut at = 0;
+                    for x0 in (0..w).step_by(tile) {
+                        let tw = tile.min(w - x0);
+                        for y in 0..th {
+                            rows[y * w + x0..][..tw].copy_from_slice(&by_tile[at..at + tw]);
+                            at += tw;
+                        }
+                    }
+                });
+        }
+        (counts, cancelled)
     }
-    RenderOutput {
-        film,
-        counts,
-        build_time: Duration::ZERO,
-        render_time: start.elapsed(),
-        cancelled,
+
+    /// Traces the tile whose top left pixel is `(x0, y0)` (in the whole image) into `pixels`
+    /// (its rows, top first) and returns the rays it took. Stops early, leaving pixels unset,
+    /// when the render is cancelled.
+    fn tile<T: TracedPixel>(&self, x0: u32, y0: u32, pixels: &mut [T]) -> RayCounts {
+        let (scene, options) = (self.scene, self.options);
+        let (x1, y1) = (
+            (x0 + TILE).min(self.window.x1),
+            (y0 + TILE).min(self.window.y1),
+        );
+        let mut tracer = Tracer::new(scene, self.accel, options.max_depth);
+        tracer.options = options.trace;
+        tracer.cancel = options.cancel.as_deref();
+        let spp = self.spp;
+        let count = self.samples.end - self.samples.start;
+        let coords = (y0..y1).flat_map(|y| (x0..x1).map(move |x| (x, y)));
+        for ((x, y), pixel) in coords.zip(pixels.iter_mut()) {
+            let mut sum = PixelSum::default();
+            for s in self.samples.clone() {
+                if tracer.cancelled() {
+                    return tracer.counts;
+                }
+                let key = SampleKey::new(x, y, s, spp, options.seed);
+                let film = if spp == 1 {
+                    Vec2::splat(0.5)
+                } else {
+                    key.pixel_pattern(options.pixel_method, 0)
+                };
+                let lens = key.pixel_pattern(options.pixel_method, 1);
+                let ray = scene.camera.generate_ray(x, y, film, lens);
+                sum.add(tracer.trace_camera(&ray, &key));
+            }
+            *pixel = T::from_sum(&sum, count);
+            if let Some(done) = self.pixels_done {
+                done.fetch_add(1, Ordering::Relaxed);
+            }
+        }
+        tracer.counts
     }
 }
 
@@ -237,46 +432,4 @@ fn cancelled(options: &RenderOptions) -> bool {
         .cancel
         .as_ref()
         .is_some_and(|c| c.load(Ordering::Relaxed))
-}
-
-/// Traces the tile whose top left pixel is `(x0, y0)` into `pixels` (its rows, top first) and
-/// returns the rays it took. Stops early, leaving pixels unset, when the render is cancelled.
-fn render_tile(
-    scene: &Scene,
-    accel: &Accel,
-    options: &RenderOptions,
-    x0: u32,
-    y0: u32,
-    pixels: &mut [Vec3],
-    pixels_done: Option<&AtomicU64>,
-) -> RayCounts {
-    let (w, h) = (scene.camera.width, scene.camera.height);
-    let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
-    let mut tracer = Tracer::new(scene, accel, options.max_depth);
-    tracer.options = options.trace;
-    tracer.cancel = options.cancel.as_deref();
-    let spp = options.spp.max(1);
-    let coords = (y0..y1).flat_map(|y| (x0..x1).map(move |x| (x, y)));
-    for ((x, y), pixel) in coords.zip(pixels.iter_mut()) {
-        let mut sum = Vec3::ZERO;
-        for s in 0..spp {
-            if tracer.cancelled() {
-                return tracer.counts;
-            }
-            let key = SampleKey::new(x, y, s, spp, options.seed);
-            let film = if spp == 1 {
-                Vec2::splat(0.5)
-            } else {
-                key.pixel_pattern(options.pixel_method, 0)
-            };
-            let lens = key.pixel_pattern(options.pixel_method, 1);
-            let ray = scene.camera.generate_ray(x, y, film, lens);
-            sum += tracer.trace_camera(&ray, &key);
-        }
-        *pixel = sum / spp as f32;
-        if let Some(done) = pixels_done {
-            done.fetch_add(1, Ordering::Relaxed);
-        }
-    }
-    tracer.counts
 }

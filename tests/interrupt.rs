@@ -131,5 +131,6 @@ fn an_image_too_large_to_allocate_is_an_error() {
             assert!(message.contains("4294967295×4294967295"), "{message}");
         }
         Ok(_) => panic!("a {0}×{0} film was allocated", u32::MAX),
+        Err(e) => panic!("{e}"),
     }
 }

@@ -4,6 +4,7 @@
 //! | command | module |
 //! |---|---|
 //! | `raytracer SCENE OUT` | [`render`] |
+//! | `raytracer merge OUT TILE...` | [`merge`] |
 //! | `raytracer compare REF TEST` | [`compare`] |
 //! | `raytracer study SCENE` | [`study`] |
 //! | `raytracer bench` | [`mod@bench`] |
@@ -12,6 +13,7 @@ pub mod bench;
 pub mod compare;
 pub mod exit_code;
 pub mod interrupt;
+pub mod merge;
 pub mod render;
 pub mod study;
 pub mod values;
@@ -23,7 +25,7 @@ use std::process::ExitCode;
 /// when given as `./bench`).
 fn subcommand(args: &[OsString]) -> Option<&'static str> {
     let first = args.get(1)?;
-    ["bench", "compare", "study"]
+    ["bench", "compare", "merge", "study"]
         .into_iter()
         .find(|name| first == name)
 }
@@ -50,6 +52,7 @@ pub fn main(args: &[OsString]) -> ExitCode {
     match subcommand(args) {
         Some("bench") => bench::main(&args[1..]),
         Some("compare") => compare::main(&args[1..]),
+        Some("merge") => merge::main(&args[1..]),
         Some("study") => study::main(&args[1..]),
         _ => render::main(args),
     }
@@ -61,6 +64,7 @@ pub fn try_parse(args: &[OsString]) -> Result<(), clap::Error> {
     match subcommand(args) {
         Some("bench") => bench::try_parse(&args[1..]),
         Some("compare") => compare::try_parse(&args[1..]),
+        Some("merge") => merge::try_parse(&args[1..]),
         Some("study") => study::try_parse(&args[1..]),
         _ => render::try_parse(args),
     }

@@ -9,8 +9,9 @@ use clap::Parser;
 use crate::accel::AccelKind;
 use crate::files::output::Outputs;
 use crate::files::shown;
-use crate::film::ToneMap;
+use crate::film::{PixelRect, ToneMap};
 use crate::image_io::{encode_image, OutputFormat};
+use crate::parts::{self, Part};
 use crate::render::{render, RenderOptions};
 use crate::sampling::Method;
 use crate::scene::{load, LoadOptions};
@@ -113,6 +114,21 @@ struct Cli {
     /// Refuse mesh files (PLY, OBJ) larger than this many bytes; they are read whole.
     #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_MESH_BYTES)]
     max_mesh_bytes: u64,
+    /// Render only the pixels x ∈ [X0, X1), y ∈ [Y0, Y1) (origin top left) of the image, as an
+    /// EXR tile for `raytracer merge` (the output must be .exr).
+    #[arg(long, value_name = "X0,Y0,X1,Y1", conflicts_with = "tile")]
+    crop: Option<PixelRect>,
+    /// Render cell COL,ROW (from 0,0 at the top left) of the grid given by --tiles, as an EXR
+    /// tile: the crop of columns ⌊COL·width/COLS⌋ .. ⌊(COL+1)·width/COLS⌋, rows likewise.
+    #[arg(long, value_name = "COL,ROW", requires = "tiles", value_parser = values::pair)]
+    tile: Option<(u32, u32)>,
+    /// The grid of --tile: COLS columns by ROWS rows.
+    #[arg(long, value_name = "COLS,ROWS", requires = "tile", value_parser = values::pair)]
+    tiles: Option<(u32, u32)>,
+    /// Trace only samples A ≤ i < B of each pixel's --spp (which stays the total, so the samples
+    /// are those of the whole render), as an EXR tile for `raytracer merge` (output .exr).
+    #[arg(long, value_name = "A..B", value_parser = values::sample_range)]
+    sample_range: Option<std::ops::Range<u32>>,
     /// No progress bar, no warnings, no summary line.
     #[arg(short, long)]
     quiet: bool,
@@ -145,6 +161,13 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
     if OutputFormat::from_path(&cli.output).is_none() {
         return Err(Failure::Usage(format!(
             "cannot tell the image format of '{}': use .ppm, .png or .exr",
+            shown(&cli.output)
+        )));
+    }
+    let part = cli.crop.is_some() || cli.tile.is_some() || cli.sample_range.is_some();
+    if part && OutputFormat::from_path(&cli.output) != Some(OutputFormat::Exr) {
+        return Err(Failure::Usage(format!(
+            "--crop, --tile and --sample-range write a tile for `raytracer merge`, which must be an .exr file, not '{}'",
             shown(&cli.output)
         )));
     }
@@ -197,6 +220,15 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         },
         progress: !cli.quiet && std::io::stderr().is_terminal(),
         cancel: Some(interrupt.flag()),
+        crop: crop(cli, &scene)?,
+        samples: cli.sample_range.clone(),
+        keep_sums: part,
+    };
+    check_part(cli, &scene, &options)?;
+    let fingerprint = if part {
+        parts::fingerprint(&scene, &options).map_err(|e| Failure::Input(e.to_string()))?
+    } else {
+        0
     };
     let pool = values::thread_pool(cli.threads).map_err(Failure::Input)?;
     let out = pool
@@ -205,9 +237,31 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
     if out.cancelled || interrupt.is_set() {
         return Err(Failure::Interrupted(NOT_WRITTEN));
     }
-    let exposure = scene.display_exposure(cli.tonemap) * cli.exposure;
-    let bytes = encode_image(&cli.output, &out.film, cli.tonemap, exposure)
-        .map_err(|e| Failure::Input(e.to_string()))?;
+    let bytes = match out.sums {
+        Some(sums) => {
+            let part = Part {
+                full: (scene.camera.width, scene.camera.height),
+                window: out.window,
+                samples: options.sample_range(),
+                spp: options.spp,
+                fingerprint,
+                exposure: parts::display_exposures(&scene),
+                counts: vec![options.sample_range().len() as u32; sums.len()],
+                sums,
+            };
+            parts::exr::encode(&part).map_err(|e| {
+                Failure::Input(format!(
+                    "{}: cannot encode the tile: {e}",
+                    shown(&cli.output)
+                ))
+            })?
+        }
+        None => {
+            let exposure = scene.display_exposure(cli.tonemap) * cli.exposure;
+            encode_image(&cli.output, &out.film, cli.tonemap, exposure)
+                .map_err(|e| Failure::Input(e.to_string()))?
+        }
+    };
     interrupt.commit(pending, &bytes)?;
     if !cli.quiet {
         let secs = out.render_time.as_secs_f64();
@@ -223,6 +277,46 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
             rays,
             rays as f64 / secs.max(1e-9) / 1e6
         );
+    }
+    Ok(())
+}
+
+/// The pixels to render: `--crop`, or the `--tile` cell of the `--tiles` grid.
+fn crop(cli: &Cli, scene: &crate::scene::Scene) -> Result<Option<PixelRect>, Failure> {
+    let size = (scene.camera.width, scene.camera.height);
+    match (cli.tile, cli.tiles) {
+        (Some(cell), Some(grid)) => PixelRect::grid_cell(size, cell, grid).map(Some).ok_or_else(|| {
+            Failure::Usage(format!(
+                "--tile {},{} is not a cell of a --tiles {},{} grid over the {}×{} image (0 ≤ COL < COLS ≤ width, 0 ≤ ROW < ROWS ≤ height)",
+                cell.0, cell.1, grid.0, grid.1, size.0, size.1
+            ))
+        }),
+        _ => Ok(cli.crop),
+    }
+}
+
+/// Usage errors of `--crop` and `--sample-range` that need the scene: a crop outside the image,
+/// a range past the samples per pixel.
+fn check_part(
+    cli: &Cli,
+    scene: &crate::scene::Scene,
+    options: &RenderOptions,
+) -> Result<(), Failure> {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    if let Some(crop) = cli.crop {
+        if !crop.within(&PixelRect::full(w, h)) {
+            return Err(Failure::Usage(format!(
+                "--crop {crop} is not inside the {w}×{h} image"
+            )));
+        }
+    }
+    if let Some(range) = &cli.sample_range {
+        if range.end > options.spp {
+            return Err(Failure::Usage(format!(
+                "--sample-range {}..{} reaches past the {} samples per pixel (--spp is the whole render's count)",
+                range.start, range.end, options.spp
+            )));
+        }
     }
     Ok(())
 }

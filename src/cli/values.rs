@@ -47,6 +47,33 @@ pub fn unit_interval_f32(text: &str) -> Result<f32, String> {
     }
 }
 
+/// `A..B` with A < B (`--sample-range`): samples A ≤ i < B.
+pub fn sample_range(text: &str) -> Result<std::ops::Range<u32>, String> {
+    let bad = || format!("'{text}' is not a sample range A..B of whole numbers");
+    let (a, b) = text.split_once("..").ok_or_else(bad)?;
+    let (a, b): (u32, u32) = (
+        a.trim().parse().map_err(|_| bad())?,
+        b.trim().parse().map_err(|_| bad())?,
+    );
+    if a < b {
+        Ok(a..b)
+    } else {
+        Err(format!(
+            "'{text}' is an empty sample range: A < B is needed"
+        ))
+    }
+}
+
+/// `A,B`: two whole numbers (`--tile`, `--tiles`).
+pub fn pair(text: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("'{text}' is not a pair A,B of whole numbers");
+    let (a, b) = text.split_once(',').ok_or_else(bad)?;
+    Ok((
+        a.trim().parse().map_err(|_| bad())?,
+        b.trim().parse().map_err(|_| bad())?,
+    ))
+}
+
 /// A rayon pool of `threads` workers (all cores for `None`).
 pub fn thread_pool(threads: Option<u64>) -> Result<rayon::ThreadPool, String> {
     rayon::ThreadPoolBuilder::new()

@@ -5,10 +5,16 @@
 //! factor and then applies one of the [`ToneMap`] curves; the default, [`ToneMap::Linear`], is
 //! the coursework's official mapping (value × 255, clamped, no gamma).
 
+pub mod rect;
+pub mod sum;
+
 use std::fmt;
 use std::str::FromStr;
 
 use glam::Vec3;
+
+pub use rect::PixelRect;
+pub use sum::PixelSum;
 
 /// Linear RGB radiance, row-major, first row at the top.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,0 +1,198 @@
+//! Exact sums of a pixel's samples, so that a render split into sample ranges and merged gives
+//! the same bytes as the render done whole.
+//!
+//! Floating-point addition is not associative: `(a + b) + c` and `a + (b + c)` can differ in the
+//! last bit, so summing samples 0..8 and 8..16 apart and adding the two sums would not equal the
+//! sum of 0..16 taken in order. Here every sample's channel is rounded once to a multiple of
+//! 2⁻⁴⁸ (about 3.6·10⁻¹⁵, twelve orders of magnitude below one 8-bit step) and added as an
+//! integer, which is exact and so independent of order and grouping. The mean divides the exact
+//! sum by the sample count and rounds once to `f32`.
+//!
+//! Non-finite samples keep their IEEE meaning: a NaN sample makes the channel NaN, as it would
+//! in a float sum; an infinite one makes it infinite (NaN if both signs occur). A finite sample
+//! beyond ±[`FINITE_LIMIT`] is clamped to it: it saturates any display a hundred million billion
+//! times over, stays finite as it came, and keeps the integer sum of at most 2²⁰ samples below
+//! 2¹²⁴, so that it never overflows its 128 bits.
+
+use glam::Vec3;
+
+/// Samples are rounded to integer multiples of `2^-FRACTION_BITS`.
+const FRACTION_BITS: i32 = 48;
+
+/// The largest sample value summed as it is: 2⁵⁶ (about 7.2·10¹⁶); finite samples beyond are
+/// clamped to it.
+pub const FINITE_LIMIT: f32 = (1u64 << 56) as f32;
+
+/// The most samples one pixel may sum (the integer sum's headroom): 2²⁰.
+pub const MAX_SAMPLES: u32 = 1 << 20;
+
+/// The exact sum of one colour channel's samples.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ChannelSum {
+    /// The finite samples, in units of 2⁻⁴⁸.
+    pub fixed: i128,
+    /// Some sample was NaN.
+    pub nan: bool,
+    /// Some sample was +∞.
+    pub pos_inf: bool,
+    /// Some sample was −∞.
+    pub neg_inf: bool,
+}
+
+impl ChannelSum {
+    /// Adds one sample.
+    #[inline]
+    pub fn add(&mut self, v: f32) {
+        if v.is_nan() {
+            self.nan = true;
+        } else if v == f32::INFINITY {
+            self.pos_inf = true;
+        } else if v == f32::NEG_INFINITY {
+            self.neg_inf = true;
+        } else {
+            // v·2⁴⁸ is exact in f64 (a 24-bit mantissa times a power of two), and so is its
+            // rounding to an integer below 2¹⁰⁴.
+            let v = v.clamp(-FINITE_LIMIT, FINITE_LIMIT);
+            let scaled = f64::from(v) * f64::from(FRACTION_BITS).exp2();
+            self.fixed += scaled.round_ties_even() as i128;
+        }
+    }
+
+    /// Adds another sum (of other samples of the same pixel).
+    pub fn merge(&mut self, other: &ChannelSum) {
+        self.fixed += other.fixed;
+        self.nan |= other.nan;
+        self.pos_inf |= other.pos_inf;
+        self.neg_inf |= other.neg_inf;
+    }
+
+    /// The mean of `count` samples summed here, rounded to `f32`; NaN for no samples.
+    pub fn mean(&self, count: u32) -> f32 {
+        if self.nan || (self.pos_inf && self.neg_inf) || count == 0 {
+            f32::NAN
+        } else if self.pos_inf {
+            f32::INFINITY
+        } else if self.neg_inf {
+            f32::NEG_INFINITY
+        } else {
+            // One rounding to f64 (exact below 2⁵³ units), one exact scaling, one division,
+            // one rounding to f32: a fixed sequence, so equal sums give equal means.
+            let sum = self.fixed as f64 * f64::from(-FRACTION_BITS).exp2();
+            (sum / f64::from(count)) as f32
+        }
+    }
+}
+
+/// The exact sums of a pixel's red, green and blue samples.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PixelSum(pub [ChannelSum; 3]);
+
+impl PixelSum {
+    /// Adds one sample's radiance.
+    #[inline]
+    pub fn add(&mut self, c: Vec3) {
+        self.0[0].add(c.x);
+        self.0[1].add(c.y);
+        self.0[2].add(c.z);
+    }
+
+    /// Adds the sums of other samples of the same pixel.
+    pub fn merge(&mut self, other: &PixelSum) {
+        for (a, b) in self.0.iter_mut().zip(&other.0) {
+            a.merge(b);
+        }
+    }
+
+    /// The mean radiance of `count` samples summed here.
+    pub fn mean(&self, count: u32) -> Vec3 {
+        Vec3::new(
+            self.0[0].mean(count),
+            self.0[1].mean(count),
+            self.0[2].mean(count),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sum_of(values: &[f32]) -> ChannelSum {
+        let mut s = ChannelSum::default();
+        for &v in values {
+            s.add(v);
+        }
+        s
+    }
+
+    #[test]
+    fn any_split_and_order_gives_the_same_sum() {
+        // Values whose float sum depends on the order: large and small mixed.
+        let values: Vec<f32> = (0..97)
+            .map(|i| ((i * 7919) % 1000) as f32 * 1.37e-3 + if i % 5 == 0 { 3.0e4 } else { 0.0 })
+            .collect();
+        let whole = sum_of(&values);
+        for cut in [0, 1, 13, 50, 96, 97] {
+            let mut a = sum_of(&values[..cut]);
+            a.merge(&sum_of(&values[cut..]));
+            assert_eq!(a, whole, "cut at {cut}");
+        }
+        let mut reversed: Vec<f32> = values.clone();
+        reversed.reverse();
+        assert_eq!(sum_of(&reversed), whole);
+        // Float sums do depend on the order, which is why this module exists.
+        let (forward, backward) = ((1.0f32 + 1e8) - 1e8, (-1e8f32 + 1e8) + 1.0);
+        assert_ne!(forward, backward);
+        assert_eq!(sum_of(&[1.0, 1e8, -1e8]), sum_of(&[-1e8, 1e8, 1.0]));
+        assert_eq!(sum_of(&[1.0, 1e8, -1e8]).mean(1), 1.0);
+    }
+
+    #[test]
+    fn mean_is_within_one_rounding_of_the_true_mean() {
+        let values = [0.1f32, 0.2, 0.3, 1.0e-3, 7.5];
+        let exact: f64 = values.iter().map(|&v| f64::from(v)).sum::<f64>() / 5.0;
+        let mean = sum_of(&values).mean(5);
+        assert!(
+            (f64::from(mean) - exact).abs() <= exact * 1e-7,
+            "{mean} vs {exact}"
+        );
+        // One sample of a representable value comes back exactly.
+        for v in [0.0f32, 1.0, 0.5, 0.123_456_79, 1.0e-6, 3.0e9, -2.5] {
+            assert_eq!(sum_of(&[v]).mean(1), v);
+        }
+    }
+
+    #[test]
+    fn non_finite_samples_keep_their_meaning() {
+        assert!(sum_of(&[1.0, f32::NAN, 2.0]).mean(3).is_nan());
+        assert_eq!(sum_of(&[1.0, f32::INFINITY]).mean(2), f32::INFINITY);
+        assert_eq!(sum_of(&[f32::NEG_INFINITY, 1.0]).mean(2), f32::NEG_INFINITY);
+        assert!(sum_of(&[f32::INFINITY, f32::NEG_INFINITY]).mean(2).is_nan());
+        assert_eq!(sum_of(&[3.0e38]).mean(1), FINITE_LIMIT);
+        assert_eq!(sum_of(&[-f32::MAX, 1.0]).mean(2), -FINITE_LIMIT / 2.0);
+        assert_eq!(sum_of(&[FINITE_LIMIT]).mean(1), FINITE_LIMIT);
+        // Infinities from different parts combine as in one sum.
+        let mut a = sum_of(&[f32::INFINITY]);
+        a.merge(&sum_of(&[f32::NEG_INFINITY]));
+        assert!(a.mean(2).is_nan());
+        assert!(ChannelSum::default().mean(0).is_nan());
+    }
+
+    #[test]
+    fn the_largest_sums_do_not_overflow() {
+        let mut s = ChannelSum::default();
+        let mut big = ChannelSum::default();
+        big.add(FINITE_LIMIT);
+        big.fixed *= i128::from(MAX_SAMPLES);
+        s.merge(&big);
+        assert_eq!(s.mean(MAX_SAMPLES), FINITE_LIMIT);
+    }
+
+    #[test]
+    fn pixel_sum_sums_each_channel() {
+        let mut p = PixelSum::default();
+        p.add(Vec3::new(1.0, 2.0, 3.0));
+        p.add(Vec3::new(3.0, 2.0, 1.0));
+        assert_eq!(p.mean(2), Vec3::splat(2.0));
+    }
+}
