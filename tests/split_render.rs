@@ -52,6 +52,7 @@ fn tile(scene: &Scene, crop: PixelRect, samples: std::ops::Range<u32>) -> Tile {
         fingerprint: parts::fingerprint(scene, &options).unwrap(),
         exposure: parts::display_exposures(scene),
         counts: vec![samples.len() as u32; sums.len()],
+        adaptive: None,
         sums,
     };
     let name = format!("{crop}@{}..{}.exr", samples.start, samples.end);

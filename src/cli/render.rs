@@ -129,6 +129,18 @@ struct Cli {
     /// are those of the whole render), as an EXR tile for `raytracer merge` (output .exr).
     #[arg(long, value_name = "A..B", value_parser = values::sample_range)]
     sample_range: Option<std::ops::Range<u32>>,
+    /// Adaptive sampling: each pixel takes samples in rounds (4, 8, 16, …) until the error
+    /// estimate around it is at most --noise-threshold, --spp at most.
+    #[arg(long, conflicts_with = "sample_range")]
+    adaptive: bool,
+    /// The error at which an adaptive pixel stops: |mean − mean of odd samples| summed over RGB,
+    /// over 10⁻⁴ + √(RGB sum), as Cycles measures it.
+    #[arg(long, value_name = "T", requires = "adaptive", value_parser = values::positive_f32)]
+    noise_threshold: Option<f32>,
+    /// With --adaptive: also write the samples each pixel took, as a heat map (black: none,
+    /// yellow: all of --spp), to this image.
+    #[arg(long, value_name = "FILE", requires = "adaptive")]
+    sample_map: Option<PathBuf>,
     /// No progress bar, no warnings, no summary line.
     #[arg(short, long)]
     quiet: bool,
@@ -194,10 +206,24 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
             eprintln!("warning: {w}");
         }
     }
-    Outputs::from_inputs(scene.inputs.iter().map(PathBuf::as_path)).claim(&cli.output)?;
+    let mut outputs = Outputs::from_inputs(scene.inputs.iter().map(PathBuf::as_path));
+    outputs.claim(&cli.output)?;
+    if let Some(map) = &cli.sample_map {
+        if OutputFormat::from_path(map).is_none() {
+            return Err(Failure::Usage(format!(
+                "cannot tell the image format of --sample-map '{}': use .ppm, .png or .exr",
+                shown(map)
+            )));
+        }
+        outputs.claim(map)?;
+    }
     // Created now, so a folder that cannot be written is reported before the render; removed
     // unless the finished image is committed.
     let pending = interrupt.create(&cli.output)?;
+    let pending_map = match &cli.sample_map {
+        Some(map) => Some(interrupt.create(map)?),
+        None => None,
+    };
     if interrupt.is_set() {
         return Err(Failure::Interrupted(NOT_WRITTEN));
     }
@@ -223,6 +249,11 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         crop: crop(cli, &scene)?,
         samples: cli.sample_range.clone(),
         keep_sums: part,
+        adaptive: cli.adaptive.then(|| crate::render::adaptive::Adaptive {
+            threshold: cli
+                .noise_threshold
+                .unwrap_or(crate::render::adaptive::DEFAULT_THRESHOLD),
+        }),
     };
     check_part(cli, &scene, &options)?;
     let fingerprint = if part {
@@ -246,7 +277,11 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
                 spp: options.spp,
                 fingerprint,
                 exposure: parts::display_exposures(&scene),
-                counts: vec![options.sample_range().len() as u32; sums.len()],
+                counts: out
+                    .sample_counts
+                    .clone()
+                    .unwrap_or_else(|| vec![options.sample_range().len() as u32; sums.len()]),
+                adaptive: options.adaptive.map(|a| a.threshold),
                 sums,
             };
             parts::exr::encode(&part).map_err(|e| {
@@ -262,6 +297,16 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
                 .map_err(|e| Failure::Input(e.to_string()))?
         }
     };
+    if let (Some(pending_map), Some(counts), Some(path)) =
+        (pending_map, &out.sample_counts, &cli.sample_map)
+    {
+        let spp = options.spp.max(1) as f32;
+        let share: Vec<f32> = counts.iter().map(|&k| k as f32 / spp).collect();
+        let map = crate::metric::heat_map(out.film.width, out.film.height, &share);
+        let map_bytes = encode_image(path, &map, ToneMap::Linear, 1.0)
+            .map_err(|e| Failure::Input(e.to_string()))?;
+        interrupt.commit(pending_map, &map_bytes)?;
+    }
     interrupt.commit(pending, &bytes)?;
     if !cli.quiet {
         let secs = out.render_time.as_secs_f64();

@@ -37,6 +37,16 @@ pub fn positive_f64(text: &str) -> Result<f64, String> {
     }
 }
 
+/// A finite number > 0 (`--noise-threshold`).
+pub fn positive_f32(text: &str) -> Result<f32, String> {
+    let v: f32 = number(text)?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("must be a finite number > 0, found {text}"))
+    }
+}
+
 /// A number in [0, 1] (`--adc-bailout`).
 pub fn unit_interval_f32(text: &str) -> Result<f32, String> {
     let v: f32 = number(text)?;

@@ -14,7 +14,9 @@
 //! and its attributes (in the header): `raytracer.fingerprint` (16 hex digits, see
 //! [`super::fingerprint`]), `raytracer.spp` (the whole render's samples per pixel),
 //! `raytracer.samples` (`A..B`, the samples this part holds) and `raytracer.exposure` (the
-//! scene's display exposure for each tone map, as `linear=… srgb=… reinhard=… exposure=…`).
+//! scene's display exposure for each tone map, as `linear=… srgb=… reinhard=… exposure=…`);
+//! `raytracer.adaptive` (f32, only in tiles of adaptive renders: the noise threshold; each
+//! pixel's `sum.count` is then the samples it took, 1 to all).
 
 use std::collections::HashMap;
 use std::io::Cursor;
@@ -36,6 +38,7 @@ const FINGERPRINT: &str = "raytracer.fingerprint";
 const SPP: &str = "raytracer.spp";
 const SAMPLES: &str = "raytracer.samples";
 const EXPOSURE: &str = "raytracer.exposure";
+const ADAPTIVE: &str = "raytracer.adaptive";
 const COLOURS: [&str; 3] = ["R", "G", "B"];
 
 /// Why a tile could not be read.
@@ -129,6 +132,9 @@ pub fn encode(part: &Part) -> Result<Vec<u8>, String> {
         .map(|(m, e)| format!("{m}={e:?}"))
         .collect();
     other.insert(Text::from(EXPOSURE), text(&exposure.join(" ")));
+    if let Some(t) = part.adaptive {
+        other.insert(Text::from(ADAPTIVE), AttributeValue::F32(t));
+    }
 
     let layer = Layer::new(
         (w, h),
@@ -289,9 +295,18 @@ pub fn decode(path: &Path, bytes: &[u8], max_pixels: u64) -> Result<Part, TileEr
             };
         }
     }
+    let adaptive = match attrs.get(&Text::from(ADAPTIVE)) {
+        Some(AttributeValue::F32(t)) if *t > 0.0 => Some(*t),
+        Some(_) => return Err(damaged(format!("'{ADAPTIVE}' is not a positive number"))),
+        None => None,
+    };
     let counts = channel("sum.count")?.to_vec();
     let expected = samples.end - samples.start;
-    if let Some(k) = counts.iter().find(|&&k| k != expected) {
+    let fits = |k: u32| match adaptive {
+        Some(_) => (1..=expected).contains(&k),
+        None => k == expected,
+    };
+    if let Some(k) = counts.iter().find(|&&k| !fits(k)) {
         return Err(damaged(format!(
             "a pixel holds {k} samples where '{SAMPLES}' says {expected}"
         )));
@@ -305,6 +320,7 @@ pub fn decode(path: &Path, bytes: &[u8], max_pixels: u64) -> Result<Part, TileEr
         exposure,
         sums,
         counts,
+        adaptive,
     })
 }
 
@@ -351,6 +367,7 @@ mod tests {
             exposure: [1.0, 1.0, 1.0, 0.5],
             sums,
             counts: vec![3; 6],
+            adaptive: None,
         }
     }
 

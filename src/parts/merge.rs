@@ -75,7 +75,7 @@ pub fn assemble(tiles: &[Tile]) -> Result<Film, MergeError> {
                 b_spp: b.spp,
             });
         }
-        if a.fingerprint != b.fingerprint || a.exposure != b.exposure {
+        if a.fingerprint != b.fingerprint || a.exposure != b.exposure || a.adaptive != b.adaptive {
             return Err(MergeError::Mismatch {
                 a: first.path.clone(),
                 b: t.path.clone(),
@@ -93,20 +93,26 @@ pub fn assemble(tiles: &[Tile]) -> Result<Film, MergeError> {
     let mut counts: Vec<u32> = Vec::new();
     counts.try_reserve_exact(n).map_err(|_| too_large())?;
     counts.resize(n, 0);
+    // The samples the tiles cover, whether an adaptive pixel took them all or not.
+    let mut covered: Vec<u32> = Vec::new();
+    covered.try_reserve_exact(n).map_err(|_| too_large())?;
+    covered.resize(n, 0);
     for t in tiles {
         let p = &t.part;
         let w = p.window.width() as usize;
+        let range = p.samples.end - p.samples.start;
         for (row, y) in (p.window.y0..p.window.y1).enumerate() {
             let at = y as usize * width as usize + p.window.x0 as usize;
             let from = row * w;
             for i in 0..w {
                 sums[at + i].merge(&p.sums[from + i]);
                 counts[at + i] += p.counts[from + i];
+                covered[at + i] += range;
             }
         }
     }
     // Tiles never overlap, so a pixel with all `spp` samples has each exactly once.
-    if let Some(i) = counts.iter().position(|&k| k != spp) {
+    if let Some(i) = covered.iter().position(|&k| k != spp) {
         let (x, y) = ((i % width as usize) as u32, (i / width as usize) as u32);
         return Err(MergeError::Gap {
             x,
@@ -114,7 +120,7 @@ pub fn assemble(tiles: &[Tile]) -> Result<Film, MergeError> {
             missing: first_missing(tiles, x, y, spp),
         });
     }
-    let pixels = sums.iter().map(|s| s.mean(spp)).collect();
+    let pixels = sums.iter().zip(&counts).map(|(s, &k)| s.mean(k)).collect();
     Ok(Film::from_pixels(width, height, pixels))
 }
 

@@ -36,8 +36,11 @@ pub struct Part {
     pub exposure: [f32; 4],
     /// The sums, row-major over `window`.
     pub sums: Vec<PixelSum>,
-    /// The samples summed in each pixel, row-major over `window`.
+    /// The samples summed in each pixel, row-major over `window`: all of `samples`, or for an
+    /// adaptive render as many as the pixel took (at least one).
     pub counts: Vec<u32>,
+    /// The noise threshold of an adaptive render.
+    pub adaptive: Option<f32>,
 }
 
 impl Part {
@@ -92,14 +95,15 @@ pub fn fingerprint(scene: &Scene, options: &RenderOptions) -> std::io::Result<u6
         h.field(&read_input(input)?);
     }
     let settings = format!(
-        "{}x{} spp={} pixel={:?} seed={} max_depth={} trace={:?}",
+        "{}x{} spp={} pixel={:?} seed={} max_depth={} trace={:?} adaptive={:?}",
         scene.camera.width,
         scene.camera.height,
         options.spp.max(1),
         options.pixel_method,
         options.seed,
         options.max_depth,
-        options.trace
+        options.trace,
+        options.adaptive
     );
     h.field(settings.as_bytes());
     Ok(h.0)

@@ -8,6 +8,8 @@
 //! ([`RenderOptions::crop`]) and a range of each pixel's samples ([`RenderOptions::samples`]),
 //! whose exact sums ([`RenderOptions::keep_sums`]) add up to the whole render bit for bit.
 
+pub mod adaptive;
+
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
@@ -53,6 +55,9 @@ pub struct RenderOptions {
     pub samples: Option<Range<u32>>,
     /// Keep each pixel's exact sample sums ([`RenderOutput::sums`]), for parts to be merged.
     pub keep_sums: bool,
+    /// Sample each pixel until its error estimate is below a threshold, `spp` at most
+    /// ([`adaptive`]); `None` takes `spp` samples everywhere.
+    pub adaptive: Option<adaptive::Adaptive>,
 }
 
 impl Default for RenderOptions {
@@ -70,6 +75,7 @@ impl Default for RenderOptions {
             crop: None,
             samples: None,
             keep_sums: false,
+            adaptive: None,
         }
     }
 }
@@ -90,6 +96,8 @@ pub struct RenderOutput {
     pub window: PixelRect,
     /// The exact sums behind `film`, row-major like it, when [`RenderOptions::keep_sums`].
     pub sums: Option<Vec<PixelSum>>,
+    /// The samples each pixel took, row-major like `film`, for adaptive renders.
+    pub sample_counts: Option<Vec<u32>>,
     pub counts: RayCounts,
     pub build_time: Duration,
     pub render_time: Duration,
@@ -115,6 +123,9 @@ pub enum RenderError {
     /// The sample range is empty or reaches past the samples per pixel.
     #[error("the sample range {}..{} is not a non-empty part of 0..{spp}", .range.start, .range.end)]
     SampleRange { range: Range<u32>, spp: u32 },
+    /// Adaptive sampling decides from all of a pixel's samples so far; it cannot take a range.
+    #[error("adaptive sampling takes all of a pixel's samples from the first: it cannot trace a sample range")]
+    AdaptiveRange,
     /// More samples per pixel than an exact sum holds.
     #[error("{spp} samples per pixel is more than the {MAX_SAMPLES} a render can sum")]
     TooManySamples { spp: u32 },
@@ -217,6 +228,9 @@ impl Plan {
             return Err(RenderError::TooManySamples { spp });
         }
         let samples = options.sample_range();
+        if options.adaptive.is_some() && samples != (0..spp) {
+            return Err(RenderError::AdaptiveRange);
+        }
         if samples.start >= samples.end || samples.end > spp {
             return Err(RenderError::SampleRange {
                 range: samples,
@@ -278,6 +292,25 @@ impl Plan {
             pixels_done,
         };
         let count = samples.end - samples.start;
+        if let Some(settings) = options.adaptive {
+            let traced = adaptive::trace(&work, settings);
+            let pixels = traced
+                .sums
+                .par_iter()
+                .zip(traced.counts.par_iter())
+                .map(|(s, &k)| s.mean(k))
+                .collect();
+            return RenderOutput {
+                film: Film::from_pixels(window.width(), window.height(), pixels),
+                window,
+                sums: options.keep_sums.then_some(traced.sums),
+                sample_counts: Some(traced.counts),
+                counts: traced.rays,
+                build_time: Duration::ZERO,
+                render_time: start.elapsed(),
+                cancelled: traced.cancelled,
+            };
+        }
         let (pixels, sums, counts, cancelled) = match buffers {
             Buffers::Means { mut film, tiles } => {
                 let (counts, cancelled) = work.trace(tiles, &mut film);
@@ -299,6 +332,7 @@ impl Plan {
             film: Film::from_pixels(window.width(), window.height(), pixels),
             window,
             sums,
+            sample_counts: None,
             counts,
             build_time: Duration::ZERO,
             render_time: start.elapsed(),
@@ -308,7 +342,7 @@ impl Plan {
 }
 
 /// One render's inputs, shared by its tiles.
-struct Work<'a> {
+pub(crate) struct Work<'a> {
     scene: &'a Scene,
     accel: &'a Accel,
     options: &'a RenderOptions,
@@ -387,19 +421,38 @@ impl Work<'_> {
         (counts, cancelled)
     }
 
+    /// A tracer for one tile's or row's pixels.
+    fn tracer(&self) -> Tracer<'_> {
+        let mut tracer = Tracer::new(self.scene, self.accel, self.options.max_depth);
+        tracer.options = self.options.trace;
+        tracer.cancel = self.options.cancel.as_deref();
+        tracer
+    }
+
+    /// The radiance of camera sample `s` (of `spp`) of pixel `(x, y)`.
+    #[inline]
+    fn sample(&self, tracer: &mut Tracer, x: u32, y: u32, s: u32) -> Vec3 {
+        let options = self.options;
+        let key = SampleKey::new(x, y, s, self.spp, options.seed);
+        let film = if self.spp == 1 {
+            Vec2::splat(0.5)
+        } else {
+            key.pixel_pattern(options.pixel_method, 0)
+        };
+        let lens = key.pixel_pattern(options.pixel_method, 1);
+        let ray = self.scene.camera.generate_ray(x, y, film, lens);
+        tracer.trace_camera(&ray, &key)
+    }
+
     /// Traces the tile whose top left pixel is `(x0, y0)` (in the whole image) into `pixels`
     /// (its rows, top first) and returns the rays it took. Stops early, leaving pixels unset,
     /// when the render is cancelled.
     fn tile<T: TracedPixel>(&self, x0: u32, y0: u32, pixels: &mut [T]) -> RayCounts {
-        let (scene, options) = (self.scene, self.options);
         let (x1, y1) = (
             (x0 + TILE).min(self.window.x1),
             (y0 + TILE).min(self.window.y1),
         );
-        let mut tracer = Tracer::new(scene, self.accel, options.max_depth);
-        tracer.options = options.trace;
-        tracer.cancel = options.cancel.as_deref();
-        let spp = self.spp;
+        let mut tracer = self.tracer();
         let count = self.samples.end - self.samples.start;
         let coords = (y0..y1).flat_map(|y| (x0..x1).map(move |x| (x, y)));
         for ((x, y), pixel) in coords.zip(pixels.iter_mut()) {
@@ -408,15 +461,7 @@ impl Work<'_> {
                 if tracer.cancelled() {
                     return tracer.counts;
                 }
-                let key = SampleKey::new(x, y, s, spp, options.seed);
-                let film = if spp == 1 {
-                    Vec2::splat(0.5)
-                } else {
-                    key.pixel_pattern(options.pixel_method, 0)
-                };
-                let lens = key.pixel_pattern(options.pixel_method, 1);
-                let ray = scene.camera.generate_ray(x, y, film, lens);
-                sum.add(tracer.trace_camera(&ray, &key));
+                sum.add(self.sample(&mut tracer, x, y, s));
             }
             *pixel = T::from_sum(&sum, count);
             if let Some(done) = self.pixels_done {

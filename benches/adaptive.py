@@ -1,0 +1,91 @@
+#!/usr/bin/env python3
+"""Adaptive against uniform sampling at equal error.
+
+For each scene: a high-spp reference (EXR); uniform renders at several spp and adaptive renders
+(--adaptive, --spp MAX) at several noise thresholds, each timed (whole process, one thread,
+median of --runs) and scored by the MSE of its linear EXR against the reference. The uniform
+runs give time as a function of MSE (interpolated in log-log); each adaptive run's time is
+divided by the uniform time at its MSE: the equal-error time ratio (below 1: adaptive wins).
+
+  python3 benches/adaptive.py [--runs 1] [--bin target/release/raytracer]
+"""
+import argparse
+import math
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+SCENES = [
+    # (name, scene file, extra flags, reference spp)
+    ("penumbra (area light)", "scenes/penumbra.json", [], 4096),
+    ("thinlens (depth of field)", "scenes/thinlens.json", ["--width", "160"], 4096),
+]
+UNIFORM = [8, 16, 32, 64, 128, 256]
+MAX_SPP = 256
+THRESHOLDS = [0.04, 0.02, 0.01, 0.005]
+
+
+def run(bin_, scene, out, flags, runs):
+    times = []
+    for _ in range(runs):
+        start = time.perf_counter()
+        subprocess.run([bin_, scene, out, "--quiet", "--threads", "1", *flags], check=True)
+        times.append(time.perf_counter() - start)
+    return statistics.median(times)
+
+
+def mse(bin_, ref, test):
+    out = subprocess.run([bin_, "compare", ref, test], check=True, capture_output=True,
+                         text=True).stdout
+    return float(out.split()[1])
+
+
+def interp_time(curve, e):
+    """Uniform time at MSE e, log-log interpolation (or extrapolation) between neighbours."""
+    pts = sorted(curve)  # (mse, time), ascending mse
+    for (e0, t0), (e1, t1) in zip(pts, pts[1:]):
+        if e0 <= e <= e1 or (e < pts[0][0] and (e0, t0) == pts[0]) or \
+                (e > pts[-1][0] and (e1, t1) == pts[-1]):
+            w = (math.log(e) - math.log(e0)) / (math.log(e1) - math.log(e0))
+            return math.exp(math.log(t0) + w * (math.log(t1) - math.log(t0)))
+    return float("nan")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=1)
+    ap.add_argument("--bin", default="target/release/raytracer")
+    a = ap.parse_args()
+    bin_ = os.path.abspath(a.bin)
+    with tempfile.TemporaryDirectory() as d:
+        for name, scene, extra, ref_spp in SCENES:
+            ref = os.path.join(d, "ref.exr")
+            subprocess.run([bin_, scene, ref, "--quiet", "--spp", str(ref_spp), *extra],
+                           check=True)
+            curve = []
+            print(f"\n{name}: reference {ref_spp} spp; one thread, median of {a.runs}")
+            print("| render | seconds | MSE | uniform time at that MSE | ratio |")
+            print("|---|---:|---:|---:|---:|")
+            out = os.path.join(d, "out.exr")
+            for spp in UNIFORM:
+                t = run(bin_, scene, out, ["--spp", str(spp), *extra], a.runs)
+                e = mse(bin_, ref, out)
+                curve.append((e, t))
+                print(f"| uniform {spp} spp | {t:.3f} | {e:.3e} | | |")
+            for th in THRESHOLDS:
+                flags = ["--spp", str(MAX_SPP), "--adaptive", "--noise-threshold", str(th),
+                         *extra]
+                t = run(bin_, scene, out, flags, a.runs)
+                e = mse(bin_, ref, out)
+                tu = interp_time(curve, e)
+                print(f"| adaptive ≤{MAX_SPP} spp, T = {th} | {t:.3f} | {e:.3e} | {tu:.3f} "
+                      f"| {t / tu:.2f}× |")
+            sys.stdout.flush()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
