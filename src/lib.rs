@@ -4,6 +4,7 @@
 //! [`image_io`]. See `docs/ARCHITECTURE.md`.
 
 pub mod accel;
+pub mod batch;
 pub mod bench;
 pub mod camera;
 pub mod cli;

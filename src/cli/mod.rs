@@ -5,10 +5,12 @@
 //! |---|---|
 //! | `raytracer SCENE OUT` | [`render`] |
 //! | `raytracer merge OUT TILE...` | [`merge`] |
+//! | `raytracer batch SCENES... --out DIR` | [`batch`] |
 //! | `raytracer compare REF TEST` | [`compare`] |
 //! | `raytracer study SCENE` | [`study`] |
 //! | `raytracer bench` | [`mod@bench`] |
 
+pub mod batch;
 pub mod bench;
 pub mod compare;
 pub mod exit_code;
@@ -25,7 +27,7 @@ use std::process::ExitCode;
 /// when given as `./bench`).
 fn subcommand(args: &[OsString]) -> Option<&'static str> {
     let first = args.get(1)?;
-    ["bench", "compare", "merge", "study"]
+    ["batch", "bench", "compare", "merge", "study"]
         .into_iter()
         .find(|name| first == name)
 }
@@ -50,6 +52,7 @@ fn strict(scene: &crate::scene::Scene) -> Result<(), String> {
 pub fn main(args: &[OsString]) -> ExitCode {
     crate::files::output::report_file_size_limit();
     match subcommand(args) {
+        Some("batch") => batch::main(&args[1..]),
         Some("bench") => bench::main(&args[1..]),
         Some("compare") => compare::main(&args[1..]),
         Some("merge") => merge::main(&args[1..]),
@@ -62,6 +65,7 @@ pub fn main(args: &[OsString]) -> ExitCode {
 /// parser and of every flag's validation.
 pub fn try_parse(args: &[OsString]) -> Result<(), clap::Error> {
     match subcommand(args) {
+        Some("batch") => batch::try_parse(&args[1..]),
         Some("bench") => bench::try_parse(&args[1..]),
         Some("compare") => compare::try_parse(&args[1..]),
         Some("merge") => merge::try_parse(&args[1..]),
@@ -85,6 +89,7 @@ mod tests {
         parse("raytracer compare a.png b.png --max-mse 0.01").unwrap();
         parse("raytracer study s.json --quick").unwrap();
         parse("raytracer bench --quick").unwrap();
+        parse("raytracer batch a.json dir --out o --reference r --max-flip 0.05").unwrap();
         for bad in [
             "raytracer s.json o.png --exposure NaN",
             "raytracer s.json o.png --threads 0",
@@ -92,6 +97,12 @@ mod tests {
             "raytracer study s.json --threads 0",
             "raytracer bench --runs 0",
             "raytracer s.json",
+            "raytracer batch --out o",
+            "raytracer batch a.json",
+            "raytracer batch a.json --out o --reference r --max-flip NaN",
+            "raytracer batch a.json --out o --reference r --max-flip -1",
+            "raytracer batch a.json --out o --max-flip 0.1",
+            "raytracer batch a.json --out o --format bmp",
         ] {
             assert!(parse(bad).is_err(), "{bad}");
         }

@@ -14,7 +14,7 @@ use crate::image_io::{encode_image, OutputFormat};
 use crate::parts::{self, Part};
 use crate::render::{render, RenderOptions};
 use crate::sampling::Method;
-use crate::scene::{load, LoadOptions};
+use crate::scene::{load, LoadOptions, Scene};
 
 use super::exit_code::{self, Failure};
 use super::interrupt::Interrupt;
@@ -28,7 +28,7 @@ use super::values;
     after_help = "Exit codes: 0 rendered; 1 the scene or an asset is bad (or the image could not be written; with --strict, also when the scene has warnings); 2 usage error (also: the output is one of the scene's files); 130 interrupted (nothing written).\n\
                   Output format by extension: .ppm (binary P6), .png (8-bit), .exr (linear 32-bit float, not tone-mapped).\n\
                   Inputs must be regular files (not FIFOs or devices); the image is written atomically and never onto the scene, a texture or a mesh it uses.\n\
-                  Image comparison: raytracer compare --help. Benchmarks: raytracer bench --help."
+                  Image comparison: raytracer compare --help. Many scenes at once: raytracer batch --help. Benchmarks: raytracer bench --help."
 )]
 struct Cli {
     /// The scene file (JSON; comments and trailing commas allowed).
@@ -149,6 +149,73 @@ struct Cli {
     strict: bool,
 }
 
+/// The flags of `raytracer SCENE OUT` that decide an image's bytes, and how they combine with the
+/// scene's own settings. `raytracer batch` takes the same flags through this, so that both write
+/// the same image for the same options.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ImageFlags {
+    pub spp: Option<u32>,
+    pub pixel_sampler: Option<Method>,
+    pub sampler: Option<Method>,
+    pub adaptive_lights: bool,
+    pub adc_bailout: Option<f32>,
+    pub seed: u64,
+    pub accel: AccelKind,
+    pub leaf_size: usize,
+    pub max_depth: Option<u32>,
+    pub tonemap: ToneMap,
+    pub exposure: f32,
+}
+
+impl ImageFlags {
+    /// The render options for `scene`: each flag given, else the scene's own setting, else the
+    /// default. The rest (no progress bar, no cancel flag) are the defaults; callers set them.
+    pub(crate) fn render_options(&self, scene: &Scene) -> RenderOptions {
+        RenderOptions {
+            spp: self.spp.or(scene.pixel_samples).unwrap_or(1),
+            pixel_method: self
+                .sampler
+                .or(self.pixel_sampler)
+                .or(scene.pixel_method)
+                .unwrap_or(Method::Jittered),
+            seed: self.seed,
+            accel: self.accel,
+            leaf_size: self.leaf_size,
+            max_depth: self.max_depth.unwrap_or(u32::MAX),
+            trace: crate::integrator::TraceOptions {
+                light_method: self.sampler,
+                light_samples: scene.light_samples,
+                adaptive_lights: self.adaptive_lights,
+                cutoff: self.adc_bailout,
+            },
+            ..RenderOptions::default()
+        }
+    }
+
+    /// The exposure the tone map applies to `scene`'s film (see [`Scene::display_exposure`]).
+    pub(crate) fn display_exposure(&self, scene: &Scene) -> f32 {
+        scene.display_exposure(self.tonemap) * self.exposure
+    }
+}
+
+impl Cli {
+    fn image_flags(&self) -> ImageFlags {
+        ImageFlags {
+            spp: self.spp,
+            pixel_sampler: self.pixel_sampler,
+            sampler: self.sampler,
+            adaptive_lights: self.adaptive_lights,
+            adc_bailout: self.adc_bailout,
+            seed: self.seed,
+            accel: self.accel,
+            leaf_size: self.leaf_size as usize,
+            max_depth: self.max_depth,
+            tonemap: self.tonemap,
+            exposure: self.exposure,
+        }
+    }
+}
+
 /// What an interrupted render did not write.
 const NOT_WRITTEN: &str = "no image written";
 
@@ -227,23 +294,8 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
     if interrupt.is_set() {
         return Err(Failure::Interrupted(NOT_WRITTEN));
     }
+    let flags = cli.image_flags();
     let options = RenderOptions {
-        spp: cli.spp.or(scene.pixel_samples).unwrap_or(1),
-        pixel_method: cli
-            .sampler
-            .or(cli.pixel_sampler)
-            .or(scene.pixel_method)
-            .unwrap_or(Method::Jittered),
-        seed: cli.seed,
-        accel: cli.accel,
-        leaf_size: cli.leaf_size as usize,
-        max_depth: cli.max_depth.unwrap_or(u32::MAX),
-        trace: crate::integrator::TraceOptions {
-            light_method: cli.sampler,
-            light_samples: scene.light_samples,
-            adaptive_lights: cli.adaptive_lights,
-            cutoff: cli.adc_bailout,
-        },
         progress: !cli.quiet && std::io::stderr().is_terminal(),
         cancel: Some(interrupt.flag()),
         crop: crop(cli, &scene)?,
@@ -254,6 +306,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
                 .noise_threshold
                 .unwrap_or(crate::render::adaptive::DEFAULT_THRESHOLD),
         }),
+        ..flags.render_options(&scene)
     };
     check_part(cli, &scene, &options)?;
     let fingerprint = if part {
@@ -292,7 +345,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
             })?
         }
         None => {
-            let exposure = scene.display_exposure(cli.tonemap) * cli.exposure;
+            let exposure = flags.display_exposure(&scene);
             encode_image(&cli.output, &out.film, cli.tonemap, exposure)
                 .map_err(|e| Failure::Input(e.to_string()))?
         }
