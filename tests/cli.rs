@@ -429,3 +429,34 @@ fn the_scenes_samples_per_pixel_are_used_unless_spp_is_given() {
     assert_eq!(scene_light, run(&seven, "g.png", &[], "2").0);
     assert_ne!(scene_light, run(&plain, "h.png", &[], "2").0);
 }
+
+/// `raytracer compare a b | head -1`: a reader that goes away is not a panic, and the exit status
+/// still judges the images.
+#[test]
+fn a_closed_standard_output_is_not_a_panic() {
+    let (dir, scene) = write_scene(SMALL);
+    let a = dir.path().join("a.png");
+    assert!(raytracer(&[&scene, &a, &"-q"]).status.success());
+    for args in [
+        vec![
+            "compare".to_string(),
+            a.display().to_string(),
+            a.display().to_string(),
+        ],
+        vec!["bench".to_string(), "--help".to_string()],
+    ] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+            .args(&args)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        if args[0] == "compare" {
+            assert_eq!(out.status.code(), Some(0), "{err}");
+        }
+    }
+}

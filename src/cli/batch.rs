@@ -93,6 +93,12 @@ struct BatchCli {
     /// Adaptive area lights (see `raytracer --help`).
     #[arg(long)]
     adaptive_lights: bool,
+    /// Adaptive sampling, --spp at most (see `raytracer --help`).
+    #[arg(long)]
+    adaptive: bool,
+    /// The error at which an adaptive pixel stops (see `raytracer --help`).
+    #[arg(long, value_name = "T", requires = "adaptive", value_parser = values::positive_f32)]
+    noise_threshold: Option<f32>,
     /// Skip reflection/refraction rays whose accumulated weight is below X.
     #[arg(long, value_name = "X", value_parser = values::unit_interval_f32)]
     adc_bailout: Option<f32>,
@@ -143,6 +149,10 @@ impl BatchCli {
             max_depth: self.max_depth,
             tonemap: self.tonemap,
             exposure: self.exposure,
+            adaptive: self.adaptive.then(|| {
+                self.noise_threshold
+                    .unwrap_or(crate::render::adaptive::DEFAULT_THRESHOLD)
+            }),
         }
     }
 

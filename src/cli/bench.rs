@@ -113,7 +113,7 @@ fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
     let runs = if cli.quick { 1 } else { cli.runs as usize };
     let leaf_size = cli.leaf_size as usize;
     let (header, rows): (Vec<&str>, Vec<Vec<String>>) = if cli.crossover {
-        println!(
+        outln!(
             "auto crossover: ray queries (primary 320x240, shadow, incoherent) on one thread, \
              median of {runs}; sparse = objects in space, backdrop = a quad behind them fills \
              the view"
@@ -146,7 +146,7 @@ fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
         if cli.huge {
             grids.push((32, 64, 1));
         }
-        println!(
+        outln!(
             "ray throughput: sphere grids at 640x480, leaf size {leaf_size}, {threads} thread(s), \
              medians of {runs} (the G=32 grid: one run)"
         );
@@ -175,7 +175,7 @@ fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
             }),
             estimate_budget: Duration::from_millis(if cli.quick { 50 } else { 500 }),
         };
-        println!(
+        outln!(
             "Table 1: 1 spp, {threads} thread(s), leaf size {leaf_size}, medians of {runs} run(s); \
              memory = accelerator + primitive records ({} B each)",
             std::mem::size_of::<crate::geometry::Primitive>()
@@ -188,7 +188,7 @@ fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
             rows.iter().map(|r| row_fields(r).to_vec()).collect(),
         )
     };
-    print!("{}", format_table(&header, &rows));
+    out!("{}", format_table(&header, &rows));
     std::io::stdout().flush().map_err(|e| e.to_string())?;
     if let Some(pending) = csv_out {
         interrupt
@@ -269,7 +269,7 @@ fn throughput_rows(t: &Throughput, threads: usize) -> Vec<Vec<String>> {
 
 fn print_throughput(t: &Throughput, threads: usize) {
     let tris = t.triangles as f64;
-    println!(
+    outln!(
         "  G={} S={}: {} triangles; SAH build {:.1} ms (median split {:.1} ms); {} nodes, depth {} \
          (stack {}); memory {:.1} B/triangle = BVH {:.1} + primitive records {:.1}",
         t.g,
@@ -285,7 +285,7 @@ fn print_throughput(t: &Throughput, threads: usize) {
         t.primitive_bytes as f64 / tris,
     );
     for s in &t.sets {
-        println!(
+        outln!(
             "    {:<10} {:>7} rays: {:>7.2} Mrays/s on 1 thread, {:>7.2} on {threads}",
             s.kind.name(),
             s.rays,

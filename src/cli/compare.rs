@@ -113,9 +113,9 @@ fn run(cli: &CompareCli, interrupt: &Interrupt) -> Result<bool, Failure> {
         }
     }
     let flip = sum / (region.width as f64 * region.height as f64);
-    println!("mse {e:.6e}");
-    println!("psnr {:.3} dB", psnr(e));
-    println!("flip {flip:.6}");
+    outln!("mse {e:.6e}");
+    outln!("psnr {:.3} dB", psnr(e));
+    outln!("flip {flip:.6}");
     for (name, path, image) in [
         ("reference", &cli.reference, &reference),
         ("test", &cli.test, &test),

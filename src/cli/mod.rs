@@ -10,6 +10,24 @@
 //! | `raytracer study SCENE` | [`study`] |
 //! | `raytracer bench` | [`mod@bench`] |
 
+/// Writes to standard output like `print!`, but a closed pipe (`raytracer compare a b | head -1`)
+/// is not a panic: what cannot be printed is dropped, and the command's work and exit status go
+/// on.
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stdout(), $($arg)*);
+    }};
+}
+
+/// [`out!`] with a newline.
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
+
 pub mod batch;
 pub mod bench;
 pub mod compare;

@@ -130,7 +130,8 @@ struct Cli {
     #[arg(long, value_name = "A..B", value_parser = values::sample_range)]
     sample_range: Option<std::ops::Range<u32>>,
     /// Adaptive sampling: each pixel takes samples in rounds (4, 8, 16, …) until the error
-    /// estimate around it is at most --noise-threshold, --spp at most.
+    /// estimate around it is at most --noise-threshold, --spp at most (pixel samples then default
+    /// to sobol, whose prefixes are stratified).
     #[arg(long, conflicts_with = "sample_range")]
     adaptive: bool,
     /// The error at which an adaptive pixel stops: |mean − mean of odd samples| summed over RGB,
@@ -165,19 +166,31 @@ pub(crate) struct ImageFlags {
     pub max_depth: Option<u32>,
     pub tonemap: ToneMap,
     pub exposure: f32,
+    /// The noise threshold of adaptive sampling, if on.
+    pub adaptive: Option<f32>,
 }
 
 impl ImageFlags {
     /// The render options for `scene`: each flag given, else the scene's own setting, else the
     /// default. The rest (no progress bar, no cancel flag) are the defaults; callers set them.
+    /// Adaptive sampling places pixel samples with Sobol unless told otherwise: the first 2^k
+    /// points of a Sobol sequence are stratified, where a prefix of a jittered pattern of all
+    /// `spp` strata is a random subset of them.
     pub(crate) fn render_options(&self, scene: &Scene) -> RenderOptions {
+        let default_method = match self.adaptive {
+            Some(_) => Method::Sobol,
+            None => Method::Jittered,
+        };
         RenderOptions {
             spp: self.spp.or(scene.pixel_samples).unwrap_or(1),
             pixel_method: self
                 .sampler
                 .or(self.pixel_sampler)
                 .or(scene.pixel_method)
-                .unwrap_or(Method::Jittered),
+                .unwrap_or(default_method),
+            adaptive: self
+                .adaptive
+                .map(|threshold| crate::render::adaptive::Adaptive { threshold }),
             seed: self.seed,
             accel: self.accel,
             leaf_size: self.leaf_size,
@@ -212,6 +225,10 @@ impl Cli {
             max_depth: self.max_depth,
             tonemap: self.tonemap,
             exposure: self.exposure,
+            adaptive: self.adaptive.then(|| {
+                self.noise_threshold
+                    .unwrap_or(crate::render::adaptive::DEFAULT_THRESHOLD)
+            }),
         }
     }
 }
@@ -301,11 +318,6 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         crop: crop(cli, &scene)?,
         samples: cli.sample_range.clone(),
         keep_sums: part,
-        adaptive: cli.adaptive.then(|| crate::render::adaptive::Adaptive {
-            threshold: cli
-                .noise_threshold
-                .unwrap_or(crate::render::adaptive::DEFAULT_THRESHOLD),
-        }),
         ..flags.render_options(&scene)
     };
     check_part(cli, &scene, &options)?;

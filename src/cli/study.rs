@@ -271,15 +271,15 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         .commit(plot_out, &png)
         .map_err(|e| e.to_string())?;
 
-    println!(
+    outln!(
         "MSE over the {what}; slopes fitted over runs with ≥ {} shadow rays",
         study::FIT_MIN_SAMPLES
     );
-    println!("{:<10} {:>8}", "sampler", "slope");
+    outln!("{:<10} {:>8}", "sampler", "slope");
     for &m in &options.samplers {
         match study::mse_slope(&runs, m) {
-            Some(s) => println!("{:<10} {s:>8.3}", m.to_string()),
-            None => println!("{:<10} {:>8}", m.to_string(), "-"),
+            Some(s) => outln!("{:<10} {s:>8.3}", m.to_string()),
+            None => outln!("{:<10} {:>8}", m.to_string(), "-"),
         }
     }
     let target = cli.target_mse.or_else(|| {
@@ -288,9 +288,9 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         Some(at.mse_region)
     });
     match target {
-        None => println!("no target MSE: give --target-mse or include random"),
+        None => outln!("no target MSE: give --target-mse or include random"),
         Some(target) => {
-            println!("time to reach MSE {target:.3e}:");
+            outln!("time to reach MSE {target:.3e}:");
             let base = study::time_to_reach(&runs, Method::Random, target);
             for &m in &options.samplers {
                 match study::time_to_reach(&runs, m, target) {
@@ -298,9 +298,9 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
                         let ratio = base
                             .map(|b| format!("  ({:.3}× random)", t / b))
                             .unwrap_or_default();
-                        println!("{:<10} {t:>10.4} s{ratio}", m.to_string());
+                        outln!("{:<10} {t:>10.4} s{ratio}", m.to_string());
                     }
-                    None => println!("{:<10} {:>10}", m.to_string(), "not reached"),
+                    None => outln!("{:<10} {:>10}", m.to_string(), "not reached"),
                 }
             }
         }
@@ -336,12 +336,17 @@ fn skip_work(cli: &StudyCli) -> Result<(), String> {
         ));
     }
     let plain = rows[0].seconds;
-    println!(
+    outln!(
         "{:<16} {:>9} {:>8} {:>12} {:>10} {:>11}",
-        "variant", "seconds", "speed-up", "rays", "FLIP", "MSE"
+        "variant",
+        "seconds",
+        "speed-up",
+        "rays",
+        "FLIP",
+        "MSE"
     );
     for r in &rows {
-        println!(
+        outln!(
             "{:<16} {:>9.4} {:>7.2}× {:>12} {:>10.5} {:>11.3e}",
             r.name,
             r.seconds,
