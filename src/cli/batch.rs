@@ -9,18 +9,16 @@ use std::sync::Mutex;
 
 use clap::Parser;
 
-use crate::accel::AccelKind;
 use crate::batch::{self, report, ImagePlan, Row, RunOptions, Status, SummaryFormat, Totals};
 use crate::files::output::{OutputError, Outputs, PendingFile};
 use crate::files::shown;
-use crate::film::ToneMap;
+
 use crate::image_io::OutputFormat;
-use crate::sampling::Method;
 use crate::scene::LoadOptions;
 
 use super::exit_code::{self, Failure};
+use super::image_flags::ImageFlags;
 use super::interrupt::Interrupt;
-use super::render::ImageFlags;
 use super::values;
 
 /// Image formats for `--format`.
@@ -76,35 +74,11 @@ struct BatchCli {
     /// --reference].
     #[arg(long, value_name = "FILE.html")]
     report: Option<PathBuf>,
+    #[command(flatten)]
+    image: ImageFlags,
     /// Worker threads shared by all scenes (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
     threads: Option<u64>,
-    /// Samples per pixel for every scene. Default: each scene's own count, else 1.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
-    spp: Option<u32>,
-    /// Placement of pixel and lens samples: random, jittered or sobol. Default: each scene
-    /// camera's `sampler`, else jittered.
-    #[arg(long)]
-    pixel_sampler: Option<Method>,
-    /// Sampler for pixel, lens and every area light (overrides --pixel-sampler and each light's
-    /// method): random, jittered or sobol.
-    #[arg(long)]
-    sampler: Option<Method>,
-    /// Adaptive area lights (see `raytracer --help`).
-    #[arg(long)]
-    adaptive_lights: bool,
-    /// Adaptive sampling, --spp at most (see `raytracer --help`).
-    #[arg(long)]
-    adaptive: bool,
-    /// The error at which an adaptive pixel stops (see `raytracer --help`).
-    #[arg(long, value_name = "T", requires = "adaptive", value_parser = values::positive_f32)]
-    noise_threshold: Option<f32>,
-    /// Skip reflection/refraction rays whose accumulated weight is below X.
-    #[arg(long, value_name = "X", value_parser = values::unit_interval_f32)]
-    adc_bailout: Option<f32>,
-    /// Seed for every random number.
-    #[arg(long, default_value_t = 0)]
-    seed: u64,
     /// Override every image's width (keeps each scene's aspect ratio unless --height is also
     /// given).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
@@ -112,21 +86,6 @@ struct BatchCli {
     /// Override every image's height.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     height: Option<u32>,
-    /// Tone map for 8-bit output: linear, srgb, reinhard or exposure.
-    #[arg(long, default_value = "linear")]
-    tonemap: ToneMap,
-    /// Multiplies each scene's exposure (a finite number ≥ 0).
-    #[arg(long, default_value_t = 1.0, value_parser = values::non_negative_f32)]
-    exposure: f32,
-    /// Accelerator: auto, none, median, sah.
-    #[arg(long, default_value = "auto")]
-    accel: AccelKind,
-    /// Most primitives per BVH leaf.
-    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u64).range(1..=255))]
-    leaf_size: u64,
-    /// Cap on reflection/refraction depth, on top of each scene's nbounces.
-    #[arg(long)]
-    max_depth: Option<u32>,
     /// Extra folder to resolve texture and mesh paths against (repeatable).
     #[arg(long = "asset-dir")]
     asset_dirs: Vec<PathBuf>,
@@ -136,38 +95,18 @@ struct BatchCli {
 }
 
 impl BatchCli {
-    fn image_flags(&self) -> ImageFlags {
-        ImageFlags {
-            spp: self.spp,
-            pixel_sampler: self.pixel_sampler,
-            sampler: self.sampler,
-            adaptive_lights: self.adaptive_lights,
-            adc_bailout: self.adc_bailout,
-            seed: self.seed,
-            accel: self.accel,
-            leaf_size: self.leaf_size as usize,
-            max_depth: self.max_depth,
-            tonemap: self.tonemap,
-            exposure: self.exposure,
-            adaptive: self.adaptive.then(|| {
-                self.noise_threshold
-                    .unwrap_or(crate::render::adaptive::DEFAULT_THRESHOLD)
-            }),
-        }
-    }
-
     /// The shared options in words, for the report.
     fn settings(&self) -> String {
         let mut parts = vec![
-            match self.spp {
+            match self.image.spp {
                 Some(spp) => format!("{spp} spp"),
                 None => "each scene's spp".to_string(),
             },
-            format!("seed {}", self.seed),
-            format!("tone map {}", self.tonemap.name()),
+            format!("seed {}", self.image.seed),
+            format!("tone map {}", self.image.tonemap.name()),
         ];
-        if self.exposure != 1.0 {
-            parts.push(format!("exposure ×{}", self.exposure));
+        if self.image.exposure != 1.0 {
+            parts.push(format!("exposure ×{}", self.image.exposure));
         }
         match (self.width, self.height) {
             (Some(w), Some(h)) => parts.push(format!("{w}×{h}")),
@@ -297,7 +236,7 @@ fn run(cli: &BatchCli, interrupt: &Interrupt) -> Result<Totals, Failure> {
         None => None,
     };
 
-    let flags = cli.image_flags();
+    let flags = &cli.image;
     let plan = |scene: &crate::scene::Scene| ImagePlan {
         render: flags.render_options(scene),
         tonemap: flags.tonemap,

@@ -32,6 +32,7 @@ pub mod batch;
 pub mod bench;
 pub mod compare;
 pub mod exit_code;
+pub mod image_flags;
 pub mod interrupt;
 pub mod merge;
 pub mod render;

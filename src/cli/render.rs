@@ -6,17 +6,16 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
-use crate::accel::AccelKind;
 use crate::files::output::Outputs;
 use crate::files::shown;
 use crate::film::{PixelRect, ToneMap};
 use crate::image_io::{encode_image, OutputFormat};
 use crate::parts::{self, Part};
 use crate::render::{render, RenderOptions};
-use crate::sampling::Method;
-use crate::scene::{load, LoadOptions, Scene};
+use crate::scene::{load, LoadOptions};
 
 use super::exit_code::{self, Failure};
+use super::image_flags::ImageFlags;
 use super::interrupt::Interrupt;
 use super::values;
 
@@ -35,55 +34,17 @@ struct Cli {
     scene: PathBuf,
     /// The image to write: .ppm, .png or .exr.
     output: PathBuf,
-    /// Samples per pixel (stratified); 1 traces one ray through each pixel centre. Default: the
-    /// scene's own count (`pixelsample` and its spellings), else 1.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
-    spp: Option<u32>,
-    /// Placement of pixel and lens samples: random, jittered or sobol. Default: the scene
-    /// camera's `sampler`, else jittered.
-    #[arg(long)]
-    pixel_sampler: Option<Method>,
-    /// Sampler for pixel, lens and every area light (overrides --pixel-sampler and each light's
-    /// method): random, jittered or sobol.
-    #[arg(long)]
-    sampler: Option<Method>,
-    /// Adaptive area lights: probe a 3×3 grid on each light first and trace all its shadow rays
-    /// only where the probes disagree (faster; can miss occluders between the probes' rays).
-    #[arg(long)]
-    adaptive_lights: bool,
-    /// Skip reflection/refraction rays whose accumulated weight is below X (POV-Ray's
-    /// adc_bailout; 1/255 = 0.0039 is one 8-bit step).
-    #[arg(long, value_name = "X", value_parser = values::unit_interval_f32)]
-    adc_bailout: Option<f32>,
-    /// Seed for every random number (the image is a pure function of the scene, options and seed).
-    #[arg(long, default_value_t = 0)]
-    seed: u64,
+    #[command(flatten)]
+    image: ImageFlags,
     /// Override the image width (keeps the aspect ratio unless --height is also given).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     width: Option<u32>,
     /// Override the image height.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     height: Option<u32>,
-    /// Tone map for 8-bit output: linear (the coursework's: ×255, clamp), srgb, reinhard, or
-    /// exposure (1 − exp(−x·exposure); the only one a CGR file's camera exposure feeds).
-    #[arg(long, default_value = "linear")]
-    tonemap: ToneMap,
-    /// Multiplies the scene's exposure (a finite number ≥ 0, as in the scene file); for CGR files,
-    /// a radiance scale of its own.
-    #[arg(long, default_value_t = 1.0, value_parser = values::non_negative_f32)]
-    exposure: f32,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
     threads: Option<u64>,
-    /// Accelerator: auto (SAH BVH, or none for tiny scenes), none, median, sah.
-    #[arg(long, default_value = "auto")]
-    accel: AccelKind,
-    /// Most primitives per BVH leaf.
-    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u64).range(1..=255))]
-    leaf_size: u64,
-    /// Cap on reflection/refraction depth, on top of the scene's nbounces.
-    #[arg(long)]
-    max_depth: Option<u32>,
     /// Extra folder to resolve texture and mesh paths against (repeatable).
     #[arg(long = "asset-dir")]
     asset_dirs: Vec<PathBuf>,
@@ -127,17 +88,8 @@ struct Cli {
     tiles: Option<(u32, u32)>,
     /// Trace only samples A ≤ i < B of each pixel's --spp (which stays the total, so the samples
     /// are those of the whole render), as an EXR tile for `raytracer merge` (output .exr).
-    #[arg(long, value_name = "A..B", value_parser = values::sample_range)]
+    #[arg(long, value_name = "A..B", value_parser = values::sample_range, conflicts_with = "adaptive")]
     sample_range: Option<std::ops::Range<u32>>,
-    /// Adaptive sampling: each pixel takes samples in rounds (4, 8, 16, …) until the error
-    /// estimate around it is at most --noise-threshold, --spp at most (pixel samples then default
-    /// to sobol, whose prefixes are stratified).
-    #[arg(long, conflicts_with = "sample_range")]
-    adaptive: bool,
-    /// The error at which an adaptive pixel stops: |mean − mean of odd samples| summed over RGB,
-    /// over 10⁻⁴ + √(RGB sum), as Cycles measures it.
-    #[arg(long, value_name = "T", requires = "adaptive", value_parser = values::positive_f32)]
-    noise_threshold: Option<f32>,
     /// With --adaptive: also write the samples each pixel took, as a heat map (black: none,
     /// yellow: all of --spp), to this image.
     #[arg(long, value_name = "FILE", requires = "adaptive")]
@@ -148,89 +100,6 @@ struct Cli {
     /// Treat every warning about the scene as an error: print them all and write nothing.
     #[arg(long)]
     strict: bool,
-}
-
-/// The flags of `raytracer SCENE OUT` that decide an image's bytes, and how they combine with the
-/// scene's own settings. `raytracer batch` takes the same flags through this, so that both write
-/// the same image for the same options.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct ImageFlags {
-    pub spp: Option<u32>,
-    pub pixel_sampler: Option<Method>,
-    pub sampler: Option<Method>,
-    pub adaptive_lights: bool,
-    pub adc_bailout: Option<f32>,
-    pub seed: u64,
-    pub accel: AccelKind,
-    pub leaf_size: usize,
-    pub max_depth: Option<u32>,
-    pub tonemap: ToneMap,
-    pub exposure: f32,
-    /// The noise threshold of adaptive sampling, if on.
-    pub adaptive: Option<f32>,
-}
-
-impl ImageFlags {
-    /// The render options for `scene`: each flag given, else the scene's own setting, else the
-    /// default. The rest (no progress bar, no cancel flag) are the defaults; callers set them.
-    /// Adaptive sampling places pixel samples with Sobol unless told otherwise: the first 2^k
-    /// points of a Sobol sequence are stratified, where a prefix of a jittered pattern of all
-    /// `spp` strata is a random subset of them.
-    pub(crate) fn render_options(&self, scene: &Scene) -> RenderOptions {
-        let default_method = match self.adaptive {
-            Some(_) => Method::Sobol,
-            None => Method::Jittered,
-        };
-        RenderOptions {
-            spp: self.spp.or(scene.pixel_samples).unwrap_or(1),
-            pixel_method: self
-                .sampler
-                .or(self.pixel_sampler)
-                .or(scene.pixel_method)
-                .unwrap_or(default_method),
-            adaptive: self
-                .adaptive
-                .map(|threshold| crate::render::adaptive::Adaptive { threshold }),
-            seed: self.seed,
-            accel: self.accel,
-            leaf_size: self.leaf_size,
-            max_depth: self.max_depth.unwrap_or(u32::MAX),
-            trace: crate::integrator::TraceOptions {
-                light_method: self.sampler,
-                light_samples: scene.light_samples,
-                adaptive_lights: self.adaptive_lights,
-                cutoff: self.adc_bailout,
-            },
-            ..RenderOptions::default()
-        }
-    }
-
-    /// The exposure the tone map applies to `scene`'s film (see [`Scene::display_exposure`]).
-    pub(crate) fn display_exposure(&self, scene: &Scene) -> f32 {
-        scene.display_exposure(self.tonemap) * self.exposure
-    }
-}
-
-impl Cli {
-    fn image_flags(&self) -> ImageFlags {
-        ImageFlags {
-            spp: self.spp,
-            pixel_sampler: self.pixel_sampler,
-            sampler: self.sampler,
-            adaptive_lights: self.adaptive_lights,
-            adc_bailout: self.adc_bailout,
-            seed: self.seed,
-            accel: self.accel,
-            leaf_size: self.leaf_size as usize,
-            max_depth: self.max_depth,
-            tonemap: self.tonemap,
-            exposure: self.exposure,
-            adaptive: self.adaptive.then(|| {
-                self.noise_threshold
-                    .unwrap_or(crate::render::adaptive::DEFAULT_THRESHOLD)
-            }),
-        }
-    }
 }
 
 /// What an interrupted render did not write.
@@ -311,7 +180,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
     if interrupt.is_set() {
         return Err(Failure::Interrupted(NOT_WRITTEN));
     }
-    let flags = cli.image_flags();
+    let flags = &cli.image;
     let options = RenderOptions {
         progress: !cli.quiet && std::io::stderr().is_terminal(),
         cancel: Some(interrupt.flag()),
@@ -358,7 +227,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         }
         None => {
             let exposure = flags.display_exposure(&scene);
-            encode_image(&cli.output, &out.film, cli.tonemap, exposure)
+            encode_image(&cli.output, &out.film, cli.image.tonemap, exposure)
                 .map_err(|e| Failure::Input(e.to_string()))?
         }
     };

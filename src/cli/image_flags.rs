@@ -1,0 +1,107 @@
+//! The flags that decide an image's bytes, shared by `raytracer SCENE OUT` and `raytracer batch`
+//! (flattened into both with clap), and how they combine with a scene's own settings: both
+//! subcommands write the same image for the same flags.
+
+use crate::accel::AccelKind;
+use crate::film::ToneMap;
+use crate::render::adaptive::{Adaptive, DEFAULT_THRESHOLD};
+use crate::render::RenderOptions;
+use crate::sampling::Method;
+use crate::scene::Scene;
+
+use super::values;
+
+#[derive(clap::Args, Debug, Clone)]
+pub(crate) struct ImageFlags {
+    /// Samples per pixel (stratified); 1 traces one ray through each pixel centre. Default: the
+    /// scene's own count (`pixelsample` and its spellings), else 1.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub spp: Option<u32>,
+    /// Placement of pixel and lens samples: random, jittered or sobol. Default: the scene
+    /// camera's `sampler`, else jittered (sobol with --adaptive).
+    #[arg(long)]
+    pub pixel_sampler: Option<Method>,
+    /// Sampler for pixel, lens and every area light (overrides --pixel-sampler and each light's
+    /// method): random, jittered or sobol.
+    #[arg(long)]
+    pub sampler: Option<Method>,
+    /// Adaptive sampling: each pixel takes samples in rounds (4, 8, 16, …) until the error
+    /// estimate around it is at most --noise-threshold, --spp at most (pixel samples then default
+    /// to sobol, whose prefixes are stratified).
+    #[arg(long)]
+    pub adaptive: bool,
+    /// The error at which an adaptive pixel stops: |mean − mean of odd samples| summed over RGB,
+    /// over 10⁻⁴ + √(RGB sum), as Cycles measures it.
+    #[arg(long, value_name = "T", requires = "adaptive", value_parser = values::positive_f32)]
+    pub noise_threshold: Option<f32>,
+    /// Adaptive area lights: probe a 3×3 grid on each light first and trace all its shadow rays
+    /// only where the probes disagree (faster; can miss occluders between the probes' rays).
+    #[arg(long)]
+    pub adaptive_lights: bool,
+    /// Skip reflection/refraction rays whose accumulated weight is below X (POV-Ray's
+    /// adc_bailout; 1/255 = 0.0039 is one 8-bit step).
+    #[arg(long, value_name = "X", value_parser = values::unit_interval_f32)]
+    pub adc_bailout: Option<f32>,
+    /// Seed for every random number (the image is a pure function of the scene, options and seed).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Tone map for 8-bit output: linear (the coursework's: ×255, clamp), srgb, reinhard, or
+    /// exposure (1 − exp(−x·exposure); the only one a CGR file's camera exposure feeds).
+    #[arg(long, default_value = "linear")]
+    pub tonemap: ToneMap,
+    /// Multiplies the scene's exposure (a finite number ≥ 0, as in the scene file); for CGR files,
+    /// a radiance scale of its own.
+    #[arg(long, default_value_t = 1.0, value_parser = values::non_negative_f32)]
+    pub exposure: f32,
+    /// Accelerator: auto (SAH BVH, or none for tiny scenes), none, median, sah.
+    #[arg(long, default_value = "auto")]
+    pub accel: AccelKind,
+    /// Most primitives per BVH leaf.
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u64).range(1..=255))]
+    pub leaf_size: u64,
+    /// Cap on reflection/refraction depth, on top of the scene's nbounces.
+    #[arg(long)]
+    pub max_depth: Option<u32>,
+}
+
+impl ImageFlags {
+    /// The render options for `scene`: each flag given, else the scene's own setting, else the
+    /// default. The rest (no progress bar, no cancel flag) are the defaults; callers set them.
+    /// Adaptive sampling places pixel samples with Sobol unless told otherwise: the first 2^k
+    /// points of a Sobol sequence are stratified, where a prefix of a jittered pattern of all
+    /// `spp` strata is a random subset of them.
+    pub(crate) fn render_options(&self, scene: &Scene) -> RenderOptions {
+        let adaptive = self.adaptive.then(|| Adaptive {
+            threshold: self.noise_threshold.unwrap_or(DEFAULT_THRESHOLD),
+        });
+        let default_method = match adaptive {
+            Some(_) => Method::Sobol,
+            None => Method::Jittered,
+        };
+        RenderOptions {
+            spp: self.spp.or(scene.pixel_samples).unwrap_or(1),
+            pixel_method: self
+                .sampler
+                .or(self.pixel_sampler)
+                .or(scene.pixel_method)
+                .unwrap_or(default_method),
+            adaptive,
+            seed: self.seed,
+            accel: self.accel,
+            leaf_size: self.leaf_size as usize,
+            max_depth: self.max_depth.unwrap_or(u32::MAX),
+            trace: crate::integrator::TraceOptions {
+                light_method: self.sampler,
+                light_samples: scene.light_samples,
+                adaptive_lights: self.adaptive_lights,
+                cutoff: self.adc_bailout,
+            },
+            ..RenderOptions::default()
+        }
+    }
+
+    /// The exposure the tone map applies to `scene`'s film (see [`Scene::display_exposure`]).
+    pub(crate) fn display_exposure(&self, scene: &Scene) -> f32 {
+        scene.display_exposure(self.tonemap) * self.exposure
+    }
+}
