@@ -22,7 +22,10 @@ fn penumbra() -> Scene {
 fn adaptive(spp: u32, threshold: f32) -> RenderOptions {
     RenderOptions {
         spp,
-        adaptive: Some(Adaptive { threshold }),
+        adaptive: Some(Adaptive {
+            threshold,
+            time_limit: None,
+        }),
         ..RenderOptions::default()
     }
 }
@@ -143,6 +146,27 @@ fn the_same_bits_on_any_thread_count_and_in_any_crop() {
     assert!(render(&scene, &ranged).is_err());
 }
 
+#[test]
+fn a_time_limit_keeps_the_rounds_each_pixel_finished() {
+    let scene = penumbra();
+    // A limit far shorter than the render: the first round is always complete, and every pixel
+    // holds whole rounds.
+    let options = RenderOptions {
+        spp: 1 << 16,
+        adaptive: Some(Adaptive {
+            threshold: 0.0,
+            time_limit: Some(std::time::Duration::from_millis(1)),
+        }),
+        ..RenderOptions::default()
+    };
+    let out = render(&scene, &options).unwrap();
+    let counts = out.sample_counts.unwrap();
+    assert!(counts
+        .iter()
+        .all(|&k| (4..1 << 16).contains(&k) && k.is_power_of_two()));
+    assert!(out.film.pixels.iter().all(|p| p.is_finite()));
+}
+
 fn raytracer(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_raytracer"))
         .current_dir(dir)
@@ -190,6 +214,8 @@ fn command_line_tiles_sample_map_and_usage_errors() {
         (&["--noise-threshold", "NaN"], "--noise-threshold"),
         (&["--sample-range", "0..8"], "--sample-range"),
         (&["--spp", "0"], "--spp"),
+        (&["--time-limit", "0"], "--time-limit"),
+        (&["--time-limit", "NaN"], "--time-limit"),
     ] {
         let o = with("x.png", extra);
         let err = String::from_utf8_lossy(&o.stderr);

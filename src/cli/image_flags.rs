@@ -11,6 +11,9 @@ use crate::scene::Scene;
 
 use super::values;
 
+/// The samples a pixel may take under `--time-limit` without `--spp`.
+const TIME_LIMIT_SPP: u32 = 65_536;
+
 #[derive(clap::Args, Debug, Clone)]
 pub(crate) struct ImageFlags {
     /// Samples per pixel (stratified); 1 traces one ray through each pixel centre. Default: the
@@ -34,6 +37,11 @@ pub(crate) struct ImageFlags {
     /// over 10⁻⁴ + √(RGB sum), as Cycles measures it.
     #[arg(long, value_name = "T", requires = "adaptive", value_parser = values::positive_f32)]
     pub noise_threshold: Option<f32>,
+    /// Render progressively for this many seconds, then write what is there: rounds of samples
+    /// (as --adaptive, which may also be given) up to --spp, or 65,536 samples a pixel without
+    /// it. The one mode whose image depends on the machine and its load, not only on the flags.
+    #[arg(long, value_name = "SECONDS", value_parser = values::positive_f64)]
+    pub time_limit: Option<f64>,
     /// Adaptive area lights: probe a 3×3 grid on each light first and trace all its shadow rays
     /// only where the probes disagree (faster; can miss occluders between the probes' rays).
     #[arg(long)]
@@ -71,15 +79,30 @@ impl ImageFlags {
     /// points of a Sobol sequence are stratified, where a prefix of a jittered pattern of all
     /// `spp` strata is a random subset of them.
     pub(crate) fn render_options(&self, scene: &Scene) -> RenderOptions {
-        let adaptive = self.adaptive.then(|| Adaptive {
-            threshold: self.noise_threshold.unwrap_or(DEFAULT_THRESHOLD),
-        });
+        let time_limit = self.time_limit.map(std::time::Duration::from_secs_f64);
+        let adaptive = match (self.adaptive, time_limit) {
+            (false, None) => None,
+            // Without --adaptive a time limit samples every pixel alike: only one whose samples
+            // are all equal (an error of exactly 0) stops before the time is up.
+            (adaptive, _) => Some(Adaptive {
+                threshold: if adaptive {
+                    self.noise_threshold.unwrap_or(DEFAULT_THRESHOLD)
+                } else {
+                    0.0
+                },
+                time_limit,
+            }),
+        };
+        let spp_cap = match (self.spp, time_limit) {
+            (None, Some(_)) => Some(TIME_LIMIT_SPP),
+            (spp, _) => spp,
+        };
         let default_method = match adaptive {
             Some(_) => Method::Sobol,
             None => Method::Jittered,
         };
         RenderOptions {
-            spp: self.spp.or(scene.pixel_samples).unwrap_or(1),
+            spp: spp_cap.or(scene.pixel_samples).unwrap_or(1),
             pixel_method: self
                 .sampler
                 .or(self.pixel_sampler)

@@ -246,11 +246,18 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         let secs = out.render_time.as_secs_f64();
         let rays = out.counts.total();
         eprintln!(
-            "{}: {}×{}, {} spp, {:.3} s (build {:.3} s), {} rays, {:.2} Mrays/s",
+            "{}: {}×{}, {}, {:.3} s (build {:.3} s), {} rays, {:.2} Mrays/s",
             shown(&cli.output),
             out.film.width,
             out.film.height,
-            options.spp,
+            match &out.sample_counts {
+                Some(counts) => format!(
+                    "{:.1} spp on average (at most {})",
+                    counts.iter().map(|&k| f64::from(k)).sum::<f64>() / counts.len().max(1) as f64,
+                    options.spp
+                ),
+                None => format!("{} spp", options.spp),
+            },
             secs,
             out.build_time.as_secs_f64(),
             rays,

@@ -17,11 +17,15 @@
 //! happen to agree inside a noisy penumbra does not stop alone. Decisions depend only on the
 //! samples, never on timing or threads: the same command gives the same bytes.
 //!
+//! With a time limit ([`Adaptive::time_limit`]) rounds go on until the time is spent and the
+//! pixels keep the rounds they finished: the one mode whose bytes depend on the machine.
+//!
 //! A crop decides as the whole render does: a pixel's decision after round r depends on the
 //! pixels within r + 1 of it, so a crop is traced with an apron of one pixel per round around it
 //! and only the crop is kept.
 
 use std::sync::atomic::Ordering;
+use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
@@ -35,6 +39,10 @@ use super::Work;
 pub struct Adaptive {
     /// A pixel stops when the error estimate of every pixel around it is at most this.
     pub threshold: f32,
+    /// Stop starting pixels once this much time has passed since the render began, and keep
+    /// what is there: each pixel the rounds it finished, the first round at least. The one setting whose result depends
+    /// on timing, and so on the machine and its load.
+    pub time_limit: Option<Duration>,
 }
 
 /// The threshold `--noise-threshold` defaults to: Cycles' default noise threshold.
@@ -112,6 +120,8 @@ pub(super) fn trace(work: &Work, settings: Adaptive) -> Traced {
         };
         region.area() as usize
     ];
+    let deadline = settings.time_limit.map(|t| Instant::now() + t);
+    let out_of_time = || deadline.is_some_and(|d| Instant::now() >= d);
     let mut rays = RayCounts::default();
     let mut start = 0;
     let mut cancelled = false;
@@ -126,18 +136,24 @@ pub(super) fn trace(work: &Work, settings: Adaptive) -> Traced {
                     if !p.active {
                         continue;
                     }
+                    if round > 0 && out_of_time() {
+                        break;
+                    }
+                    // A pixel's state changes only once its round is complete.
+                    let mut next = *p;
                     let x = region.x0 + i as u32;
                     for s in start..end {
                         if tracer.cancelled() {
                             return tracer.counts;
                         }
                         let c = work.sample(&mut tracer, x, y, s);
-                        p.all.add(c);
+                        next.all.add(c);
                         if s % 2 == 1 {
-                            p.odd.add(c);
+                            next.odd.add(c);
                         }
                     }
-                    p.count = end;
+                    next.count = end;
+                    *p = next;
                 }
                 tracer.counts
             })
@@ -148,6 +164,9 @@ pub(super) fn trace(work: &Work, settings: Adaptive) -> Traced {
         rays.add(&counts);
         if super::cancelled(work.options) {
             cancelled = true;
+            break;
+        }
+        if out_of_time() {
             break;
         }
         start = end;
