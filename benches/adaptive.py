@@ -7,7 +7,8 @@ median of --runs) and scored by the MSE of its linear EXR against the reference.
 runs give time as a function of MSE (interpolated in log-log); each adaptive run's time is
 divided by the uniform time at its MSE: the equal-error time ratio (below 1: adaptive wins).
 
-  python3 benches/adaptive.py [--runs 1] [--bin target/release/raytracer]
+  python3 benches/adaptive.py [--runs 1] [--max-spp 256] [--scenes penumbra,thinlens]
+                              [--bin target/release/raytracer]
 """
 import argparse
 import math
@@ -23,8 +24,6 @@ SCENES = [
     ("penumbra (area light)", "scenes/penumbra.json", [], 4096),
     ("thinlens (depth of field)", "scenes/thinlens.json", ["--width", "160"], 4096),
 ]
-UNIFORM = [8, 16, 32, 64, 128, 256]
-MAX_SPP = 256
 THRESHOLDS = [0.04, 0.02, 0.01, 0.005]
 
 
@@ -58,10 +57,17 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=1)
     ap.add_argument("--bin", default="target/release/raytracer")
+    ap.add_argument("--max-spp", type=int, default=256,
+                    help="adaptive cap; uniform runs go from 8 up to it, doubling")
+    ap.add_argument("--scenes", default="penumbra,thinlens")
     a = ap.parse_args()
+    uniform = [n for n in (2 ** k for k in range(3, 21)) if n <= a.max_spp]
+    wanted = a.scenes.split(",")
     bin_ = os.path.abspath(a.bin)
     with tempfile.TemporaryDirectory() as d:
         for name, scene, extra, ref_spp in SCENES:
+            if not any(w in scene for w in wanted):
+                continue
             ref = os.path.join(d, "ref.exr")
             subprocess.run([bin_, scene, ref, "--quiet", "--spp", str(ref_spp), *extra],
                            check=True)
@@ -70,18 +76,18 @@ def main():
             print("| render | seconds | MSE | uniform time at that MSE | ratio |")
             print("|---|---:|---:|---:|---:|")
             out = os.path.join(d, "out.exr")
-            for spp in UNIFORM:
+            for spp in uniform:
                 t = run(bin_, scene, out, ["--spp", str(spp), *extra], a.runs)
                 e = mse(bin_, ref, out)
                 curve.append((e, t))
                 print(f"| uniform {spp} spp | {t:.3f} | {e:.3e} | | |")
             for th in THRESHOLDS:
-                flags = ["--spp", str(MAX_SPP), "--adaptive", "--noise-threshold", str(th),
+                flags = ["--spp", str(a.max_spp), "--adaptive", "--noise-threshold", str(th),
                          *extra]
                 t = run(bin_, scene, out, flags, a.runs)
                 e = mse(bin_, ref, out)
                 tu = interp_time(curve, e)
-                print(f"| adaptive ≤{MAX_SPP} spp, T = {th} | {t:.3f} | {e:.3e} | {tu:.3f} "
+                print(f"| adaptive ≤{a.max_spp} spp, T = {th} | {t:.3f} | {e:.3e} | {tu:.3f} "
                       f"| {t / tu:.2f}× |")
             sys.stdout.flush()
     return 0
