@@ -691,7 +691,17 @@ fn number_text(x: f64) -> String {
     }
 }
 
+/// A text cell of the summary. One that starts with `=`, `+`, `-`, `@`, a tab or a carriage
+/// return gets a leading `'`, so that a spreadsheet shows it as text rather than running it as a
+/// formula (OWASP, "CSV Injection"): scene names and error messages come from students' files.
 fn csv_field(text: &str) -> String {
+    let guarded;
+    let text = if text.starts_with(['=', '+', '-', '@', '\t', '\r']) {
+        guarded = format!("'{text}");
+        guarded.as_str()
+    } else {
+        text
+    };
     if text.contains([',', '"', '\n', '\r']) || text.starts_with(' ') || text.ends_with(' ') {
         format!("\"{}\"", text.replace('"', "\"\""))
     } else {
@@ -888,6 +898,14 @@ mod tests {
             }),
             images: Images::default(),
         }
+    }
+
+    #[test]
+    fn csv_text_that_a_spreadsheet_would_run_is_kept_as_text() {
+        assert_eq!(csv_field("=HYPERLINK(\"x\")"), "\"'=HYPERLINK(\"\"x\"\")\"");
+        assert_eq!(csv_field("@sum"), "'@sum");
+        assert_eq!(csv_field("-2+3"), "'-2+3");
+        assert_eq!(csv_field("scenes/a=b.json"), "scenes/a=b.json");
     }
 
     #[test]
