@@ -41,20 +41,12 @@ fn tile(scene: &Scene, crop: PixelRect, samples: std::ops::Range<u32>) -> Tile {
         keep_sums: true,
         ..options()
     };
-    let out = render(scene, &options).unwrap();
+    let mut out = render(scene, &options).unwrap();
     assert_eq!(out.window, crop);
-    let sums = out.sums.unwrap();
-    let part = Part {
-        full: (W, H),
-        window: crop,
-        samples: samples.clone(),
-        spp: SPP,
-        fingerprint: parts::fingerprint(scene, &options).unwrap(),
-        exposure: parts::display_exposures(scene),
-        counts: vec![samples.len() as u32; sums.len()],
-        adaptive: None,
-        sums,
-    };
+    let fingerprint = parts::fingerprint(scene, &options).unwrap();
+    let part = Part::of_render(scene, &options, fingerprint, &mut out).unwrap();
+    assert_eq!((part.full, part.spp), ((W, H), SPP));
+    assert!(part.counts.iter().all(|&k| k == samples.len() as u32));
     let name = format!("{crop}@{}..{}.exr", samples.start, samples.end);
     let bytes = exr::encode(&part).unwrap();
     let part = exr::decode(Path::new(&name), &bytes, 1 << 20).unwrap();

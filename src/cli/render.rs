@@ -11,7 +11,7 @@ use crate::files::shown;
 use crate::film::{PixelRect, ToneMap};
 use crate::image_io::{encode_image, OutputFormat};
 use crate::parts::{self, Part};
-use crate::render::{render, RenderOptions};
+use crate::render::{render, RenderError, RenderOptions};
 use crate::scene::{load, LoadOptions};
 
 use super::exit_code::{self, Failure};
@@ -189,42 +189,32 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         keep_sums: part,
         ..flags.render_options(&scene)
     };
-    check_part(cli, &scene, &options)?;
     let fingerprint = if part {
         parts::fingerprint(&scene, &options).map_err(|e| Failure::Input(e.to_string()))?
     } else {
         0
     };
     let pool = values::thread_pool(cli.threads).map_err(Failure::Input)?;
-    let out = pool
+    let mut out = pool
         .install(|| render(&scene, &options))
-        .map_err(|e| Failure::Input(e.to_string()))?;
+        .map_err(|e| match e {
+            // The render checks the crop and range against the scene: the flags' fault.
+            RenderError::CropOutside { .. } => Failure::Usage(format!("--crop: {e}")),
+            RenderError::SampleRange { .. } => Failure::Usage(format!(
+                "--sample-range: {e} (--spp is the whole render's count)"
+            )),
+            _ => Failure::Input(e.to_string()),
+        })?;
     if out.cancelled || interrupt.is_set() {
         return Err(Failure::Interrupted(NOT_WRITTEN));
     }
-    let bytes = match out.sums {
-        Some(sums) => {
-            let part = Part {
-                full: (scene.camera.width, scene.camera.height),
-                window: out.window,
-                samples: options.sample_range(),
-                spp: options.spp,
-                fingerprint,
-                exposure: parts::display_exposures(&scene),
-                counts: out
-                    .sample_counts
-                    .clone()
-                    .unwrap_or_else(|| vec![options.sample_range().len() as u32; sums.len()]),
-                adaptive: options.adaptive.map(|a| a.threshold),
-                sums,
-            };
-            parts::exr::encode(&part).map_err(|e| {
-                Failure::Input(format!(
-                    "{}: cannot encode the tile: {e}",
-                    shown(&cli.output)
-                ))
-            })?
-        }
+    let bytes = match Part::of_render(&scene, &options, fingerprint, &mut out) {
+        Some(part) => parts::exr::encode(&part).map_err(|e| {
+            Failure::Input(format!(
+                "{}: cannot encode the tile: {e}",
+                shown(&cli.output)
+            ))
+        })?,
         None => {
             let exposure = flags.display_exposure(&scene);
             encode_image(&cli.output, &out.film, cli.image.tonemap, exposure)
@@ -279,30 +269,4 @@ fn crop(cli: &Cli, scene: &crate::scene::Scene) -> Result<Option<PixelRect>, Fai
         }),
         _ => Ok(cli.crop),
     }
-}
-
-/// Usage errors of `--crop` and `--sample-range` that need the scene: a crop outside the image,
-/// a range past the samples per pixel.
-fn check_part(
-    cli: &Cli,
-    scene: &crate::scene::Scene,
-    options: &RenderOptions,
-) -> Result<(), Failure> {
-    let (w, h) = (scene.camera.width, scene.camera.height);
-    if let Some(crop) = cli.crop {
-        if !crop.within(&PixelRect::full(w, h)) {
-            return Err(Failure::Usage(format!(
-                "--crop {crop} is not inside the {w}×{h} image"
-            )));
-        }
-    }
-    if let Some(range) = &cli.sample_range {
-        if range.end > options.spp {
-            return Err(Failure::Usage(format!(
-                "--sample-range {}..{} reaches past the {} samples per pixel (--spp is the whole render's count)",
-                range.start, range.end, options.spp
-            )));
-        }
-    }
-    Ok(())
 }

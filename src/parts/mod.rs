@@ -14,7 +14,7 @@ use std::ops::Range;
 use std::path::Path;
 
 use crate::film::{PixelRect, PixelSum, ToneMap};
-use crate::render::RenderOptions;
+use crate::render::{RenderOptions, RenderOutput};
 use crate::scene::Scene;
 
 /// One part of a render: the exact sample sums of a rectangle of pixels over a range of their
@@ -44,6 +44,34 @@ pub struct Part {
 }
 
 impl Part {
+    /// The part that a render of `scene` with `options` (and [`RenderOptions::keep_sums`])
+    /// produced, with the `fingerprint` of both, taking the sums out of `out`; `None` when the
+    /// render kept no sums.
+    pub fn of_render(
+        scene: &Scene,
+        options: &RenderOptions,
+        fingerprint: u64,
+        out: &mut RenderOutput,
+    ) -> Option<Part> {
+        let sums = out.sums.take()?;
+        let samples = options.sample_range();
+        let counts = out
+            .sample_counts
+            .clone()
+            .unwrap_or_else(|| vec![samples.len() as u32; sums.len()]);
+        Some(Part {
+            full: (scene.camera.width, scene.camera.height),
+            window: out.window,
+            samples,
+            spp: options.spp.max(1),
+            fingerprint,
+            exposure: display_exposures(scene),
+            sums,
+            counts,
+            adaptive: options.adaptive.map(|a| a.threshold),
+        })
+    }
+
     /// The scene's display exposure for `map`.
     pub fn display_exposure(&self, map: ToneMap) -> f32 {
         let i = ToneMap::ALL.iter().position(|&m| m == map).unwrap_or(0);

@@ -64,9 +64,21 @@ pub fn round_ends(spp: u32) -> Vec<u32> {
     }
 }
 
+/// The pixels an adaptive render of `window` (in an image of `full` pixels) traces at `spp`:
+/// the window and an apron of one pixel per round around it, within the image.
+pub(super) fn traced_region(window: PixelRect, full: PixelRect, spp: u32) -> PixelRect {
+    let apron = round_ends(spp).len() as u32;
+    PixelRect {
+        x0: window.x0.saturating_sub(apron),
+        y0: window.y0.saturating_sub(apron),
+        x1: window.x1.saturating_add(apron).min(full.x1),
+        y1: window.y1.saturating_add(apron).min(full.y1),
+    }
+}
+
 /// One pixel's samples so far.
 #[derive(Debug, Clone, Copy, Default)]
-struct PixelState {
+pub(super) struct PixelState {
     all: PixelSum,
     odd: PixelSum,
     count: u32,
@@ -100,26 +112,21 @@ pub(super) struct Traced {
     pub cancelled: bool,
 }
 
-/// Traces `work.window` adaptively with `settings`.
-pub(super) fn trace(work: &Work, settings: Adaptive) -> Traced {
+/// Traces `work.window` adaptively with `settings`, into `states`: one per pixel of `region`
+/// ([`traced_region`]), allocated by the caller.
+pub(super) fn trace(
+    work: &Work,
+    settings: Adaptive,
+    mut states: Vec<PixelState>,
+    region: PixelRect,
+) -> Traced {
     let ends = round_ends(work.spp);
-    let full = PixelRect::full(work.scene.camera.width, work.scene.camera.height);
-    let apron = ends.len() as u32;
     let w = work.window;
-    let region = PixelRect {
-        x0: w.x0.saturating_sub(apron),
-        y0: w.y0.saturating_sub(apron),
-        x1: (w.x1.saturating_add(apron)).min(full.x1),
-        y1: (w.y1.saturating_add(apron)).min(full.y1),
-    };
     let rw = region.width() as usize;
-    let mut states = vec![
-        PixelState {
-            active: true,
-            ..PixelState::default()
-        };
-        region.area() as usize
-    ];
+    debug_assert_eq!(states.len() as u64, region.area());
+    for p in &mut states {
+        p.active = true;
+    }
     let deadline = settings.time_limit.map(|t| Instant::now() + t);
     let out_of_time = || deadline.is_some_and(|d| Instant::now() >= d);
     let mut rays = RayCounts::default();

@@ -121,7 +121,7 @@ pub enum RenderError {
         height: u32,
     },
     /// The sample range is empty or reaches past the samples per pixel.
-    #[error("the sample range {}..{} is not a non-empty part of 0..{spp}", .range.start, .range.end)]
+    #[error("the sample range {}..{} is not a non-empty part of the {spp} samples per pixel, 0..{spp}", .range.start, .range.end)]
     SampleRange { range: Range<u32>, spp: u32 },
     /// Adaptive sampling decides from all of a pixel's samples so far; it cannot take a range.
     #[error("adaptive sampling takes all of a pixel's samples from the first: it cannot trace a sample range")]
@@ -209,6 +209,12 @@ enum Buffers {
         tiles: Vec<PixelSum>,
         film: Vec<Vec3>,
     },
+    /// Adaptive sampling: the state of every pixel of `region`, the window with its apron.
+    Adaptive {
+        states: Vec<adaptive::PixelState>,
+        region: PixelRect,
+        settings: adaptive::Adaptive,
+    },
 }
 
 impl Plan {
@@ -238,23 +244,30 @@ impl Plan {
             });
         }
         let n = window.area();
-        let per_pixel = if options.keep_sums {
-            2 * std::mem::size_of::<PixelSum>() + std::mem::size_of::<Vec3>()
-        } else {
-            2 * std::mem::size_of::<Vec3>()
-        };
-        let too_large = || RenderError::TooLarge {
+        let too_large = |pixels: u64, per_pixel: usize| RenderError::TooLarge {
             width: window.width(),
             height: window.height(),
-            gib: n as f64 * per_pixel as f64 / (1u64 << 30) as f64,
+            gib: pixels as f64 * per_pixel as f64 / (1u64 << 30) as f64,
         };
-        let buffers = if options.keep_sums {
+        let buffers = if let Some(settings) = options.adaptive {
+            let region = adaptive::traced_region(window, full, spp);
+            let per_pixel = std::mem::size_of::<adaptive::PixelState>();
+            Buffers::Adaptive {
+                states: try_buffer(region.area())
+                    .ok_or_else(|| too_large(region.area(), per_pixel))?,
+                region,
+                settings,
+            }
+        } else if options.keep_sums {
+            let per_pixel = 2 * std::mem::size_of::<PixelSum>() + std::mem::size_of::<Vec3>();
+            let too_large = || too_large(n, per_pixel);
             Buffers::Sums {
                 sums: try_buffer(n).ok_or_else(too_large)?,
                 tiles: try_buffer(n).ok_or_else(too_large)?,
                 film: try_buffer(n).ok_or_else(too_large)?,
             }
         } else {
+            let too_large = || too_large(n, 2 * std::mem::size_of::<Vec3>());
             Buffers::Means {
                 film: try_buffer(n).ok_or_else(too_large)?,
                 tiles: try_buffer(n).ok_or_else(too_large)?,
@@ -292,26 +305,30 @@ impl Plan {
             pixels_done,
         };
         let count = samples.end - samples.start;
-        if let Some(settings) = options.adaptive {
-            let traced = adaptive::trace(&work, settings);
-            let pixels = traced
-                .sums
-                .par_iter()
-                .zip(traced.counts.par_iter())
-                .map(|(s, &k)| s.mean(k))
-                .collect();
-            return RenderOutput {
-                film: Film::from_pixels(window.width(), window.height(), pixels),
-                window,
-                sums: options.keep_sums.then_some(traced.sums),
-                sample_counts: Some(traced.counts),
-                counts: traced.rays,
-                build_time: Duration::ZERO,
-                render_time: start.elapsed(),
-                cancelled: traced.cancelled,
-            };
-        }
         let (pixels, sums, counts, cancelled) = match buffers {
+            Buffers::Adaptive {
+                states,
+                region,
+                settings,
+            } => {
+                let traced = adaptive::trace(&work, settings, states, region);
+                let pixels = traced
+                    .sums
+                    .par_iter()
+                    .zip(traced.counts.par_iter())
+                    .map(|(s, &k)| s.mean(k))
+                    .collect();
+                return RenderOutput {
+                    film: Film::from_pixels(window.width(), window.height(), pixels),
+                    window,
+                    sums: options.keep_sums.then_some(traced.sums),
+                    sample_counts: Some(traced.counts),
+                    counts: traced.rays,
+                    build_time: Duration::ZERO,
+                    render_time: start.elapsed(),
+                    cancelled: traced.cancelled,
+                };
+            }
             Buffers::Means { mut film, tiles } => {
                 let (counts, cancelled) = work.trace(tiles, &mut film);
                 (film, None, counts, cancelled)
