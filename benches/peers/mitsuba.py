@@ -535,14 +535,16 @@ def main():
         if s not in ladder:
             sys.exit("--noise-spp and --target-spp must be steps of --ladder (%d is not)" % s)
 
-    print("Mitsuba %s (scalar_rgb, sampler %s, 1 thread), %d px wide, reference %d spp in %d chunks\n"
-          % (mi.__version__, args.sampler, args.size, args.ref_spp, args.chunks))
+    print("Mitsuba %s (scalar_rgb, 1 thread; sampler %s, the references: independent), %d px wide, "
+          "references %d spp in %d chunks; raytracer %s\n"
+          % (mi.__version__, args.sampler, args.size, args.ref_spp, args.chunks, args.raytracer))
     for name in args.scenes.split(","):
         path = SCENES.get(name, name)
         with open(path, "rb") as f:
             scene_bytes = f.read()
         try:
-            m = Mitsuba(path, args.size, None, args.sampler)
+            m_ref = Mitsuba(path, args.size, None, "independent")
+            m = m_ref if args.sampler == "independent" else Mitsuba(path, args.size, None, args.sampler)
         except Unsupported as e:
             sys.exit("%s: cannot be compared with Mitsuba: %s" % (path, e))
         w, h = m.width, m.height
@@ -556,11 +558,11 @@ def main():
                 save_png(img, os.path.join(args.save, label + "_mitsuba16.png"))
             continue
 
-        key = hashlib.sha256(json.dumps([CONVERTER_VERSION, mi.__version__, args.sampler, w, h,
+        key = hashlib.sha256(json.dumps([CONVERTER_VERSION, mi.__version__, "independent", w, h,
                                          args.ref_spp, args.chunks]).encode() + scene_bytes).hexdigest()[:16]
         if args.ref_threads != 1:
             dr.set_thread_count(args.ref_threads)
-        ref, ref_var = chunked(m.render, args.ref_spp, args.chunks,
+        ref, ref_var = chunked(m_ref.render, args.ref_spp, args.chunks,
                                os.path.join(CACHE, "%s-mitsuba-%s.npz" % (label, key)), label + " Mitsuba ref")
         dr.set_thread_count(1)
         if args.mitsuba_only:
