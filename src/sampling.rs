@@ -150,6 +150,18 @@ impl SampleKey {
         }
     }
 
+    /// Point `index` of the `count` points this camera sample owns in the pixel's 2D
+    /// Owen-scrambled Sobol set for `dimension`: the set is one sequence over all the pixel's
+    /// samples (camera sample `s` takes points `s·count .. s·count + count`), so the points of a
+    /// dimension are stratified across the whole pixel, not only within one camera sample. The
+    /// path tracer gives each bounce and each light its own dimensions ("padding", as in
+    /// pbrt-v4's `PaddedSobolSampler`).
+    #[inline]
+    pub fn sobol(&self, dimension: u64, index: u32, count: u32) -> Vec2 {
+        let seed = (hash(&[self.pixel_key, dimension, 0x9a7b_50b0]) >> 32) as u32;
+        sobol2(self.sample.wrapping_mul(count).wrapping_add(index), seed)
+    }
+
     /// Sample `index` of `count` samples placed with `method` in the unit square, for a set of
     /// samples taken at one shading point (e.g. the shadow rays towards one area light). `dimension`
     /// separates different sets at the same point.
