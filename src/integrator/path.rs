@@ -1,9 +1,9 @@
 //! Unidirectional path tracing (`"rendermode": "pathtrace"`, or `--integrator path`).
 //!
 //! From each camera ray the path scatters off surfaces by their [`Bsdf`]: at every vertex up to
-//! `nbounces` it takes next-event estimates towards every light (the light's sample count per
-//! vertex, placed on the light as `Light::sample` places them), then continues in one BSDF-sampled
-//! direction. Light is therefore found two ways, by a light sample and by a scattered ray that hits
+//! `nbounces` it takes next-event estimates towards every light (one sample per light and vertex,
+//! or the file's `lightsample`, placed as `Light::sample` places them), then continues in one
+//! BSDF-sampled direction. Light is therefore found two ways, by a light sample and by a scattered ray that hits
 //! an emitter, and both are weighted by the power heuristic ([`mis`](super::mis)); directions
 //! only one way can find (point lights; mirror and glass bounces; the background) take all the
 //! weight. A ray that leaves the scene returns `backgroundcolor` as radiance.
@@ -17,16 +17,16 @@
 //! roulette, unbiased. Shadow rays are blocked by every scene shape (glass included: caustics come
 //! only from scattered rays) and by the lights' own surfaces other than the target light's.
 //!
-//! Every random number comes from [`SampleKey::sobol`]: vertex `d` owns dimensions
-//! `2 + d·(2 + L)` (lobe choice and roulette), the next (BSDF direction), and one per light for
-//! its samples (`L` lights); dimensions 0 and 1 are the film and lens positions. So a pixel's
+//! Every random number comes from [`SampleKey::sobol4`]: vertex `d` owns the 4D set
+//! `2 + d·(1 + L)` (BSDF direction, lobe choice, roulette) and the next `L`, one per light for its
+//! samples (`L` lights); sets 0 and 1 are the film and lens positions. So a pixel's
 //! value depends only on (pixel, sample, dimension, seed).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::accel::Accel;
 use crate::light::Light;
-use crate::math::Vec3;
+use crate::math::{Vec2, Vec3};
 use crate::ray::{Hit, Ray, SpawnPoints};
 use crate::sampling::SampleKey;
 use crate::scene::Scene;
@@ -99,7 +99,7 @@ impl<'a> PathTracer<'a> {
         let scene = self.scene;
         let lights = &scene.lights;
         let last_vertex = scene.nbounces.min(self.max_depth);
-        let dims_per_vertex = 2 + lights.len() as u64;
+        let dims_per_vertex = 1 + lights.len() as u64;
         let mut radiance = Vec3::ZERO;
         let mut beta = Vec3::ONE;
         let mut ray = *camera_ray;
@@ -149,10 +149,12 @@ impl<'a> PathTracer<'a> {
             let dims = FIRST_DIMENSION + depth as u64 * dims_per_vertex;
             let spawn = hit.spawn_points();
             if bsdf.has_smooth() {
-                radiance += beta * self.direct(&bsdf, &hit, &spawn, wo, key, dims + 2);
+                radiance += beta * self.direct(&bsdf, &hit, &spawn, wo, key, dims + 1);
             }
-            let choice = key.sobol(dims, 0, 1);
-            let Some(s) = bsdf.sample(wo, choice.x, key.sobol(dims + 1, 0, 1)) else {
+            // One 4D point: the direction in its first two (best stratified) dimensions, the lobe
+            // and the roulette in the other two.
+            let [u0, u1, u_lobe, u_roulette] = key.sobol4(dims, 0, 1);
+            let Some(s) = bsdf.sample(wo, u_lobe, Vec2::new(u0, u1)) else {
                 break;
             };
             beta *= s.weight;
@@ -161,7 +163,7 @@ impl<'a> PathTracer<'a> {
             }
             if depth >= ROULETTE_START {
                 let q = beta.max_element().min(ROULETTE_MAX);
-                if choice.y >= q {
+                if u_roulette >= q {
                     break;
                 }
                 beta /= q;
@@ -192,10 +194,21 @@ impl<'a> PathTracer<'a> {
             Scattered::Delta => le,
             Scattered::Smooth { point: p, pdf } => {
                 let l = &lights[light as usize];
-                let (count, _) = self.options.light_plan(l);
+                let count = self.light_samples(l);
                 let pl = l.pdf(p, point, normal);
                 le * power_heuristic(1.0, pdf, count as f32, pl)
             }
+        }
+    }
+
+    /// Light samples per vertex for `light`: the scene-wide count (`lightsample`), else one.
+    /// A light's own `samples` is Whitted's shadow-ray count per shading point; a path already
+    /// averages over many vertices, and one sample each is what other path tracers take.
+    #[inline]
+    fn light_samples(&self, light: &Light) -> u32 {
+        match light {
+            Light::Point { .. } => 1,
+            _ => self.options.light_samples.unwrap_or(1).max(1),
         }
     }
 
@@ -213,7 +226,7 @@ impl<'a> PathTracer<'a> {
         let lights = &self.scene.lights;
         let mut sum = Vec3::ZERO;
         for (li, light) in lights.iter().enumerate() {
-            let (count, _) = self.options.light_plan(light);
+            let count = self.light_samples(light);
             let share = 1.0 / count as f32;
             for j in 0..count {
                 let s = light.sample(hit.point, key.sobol(first_dim + li as u64, j, count));
