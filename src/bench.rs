@@ -13,7 +13,7 @@ use crate::accel::{Accel, AccelKind};
 use crate::camera::{Camera, Handedness};
 use crate::files::shown;
 use crate::geometry::{Mesh, MeshUv, Primitive, Shape, Sphere, Triangle};
-use crate::integrator::Tracer;
+use crate::integrator::{Integrator, Kind};
 use crate::light::{Intensity, Light};
 use crate::material::Material;
 use crate::math::{orthonormal_basis, Vec2, Vec3};
@@ -503,8 +503,12 @@ pub fn estimate_render(
     if pixels == 0 {
         return Duration::ZERO;
     }
-    let mut tracer = Tracer::new(scene, accel, options.max_depth);
-    tracer.options = options.trace;
+    let integrator = Integrator::new(
+        scene,
+        accel,
+        options.integrator.unwrap_or(Kind::of_scene(scene)),
+    );
+    let mut tracer = integrator.tracer(options.max_depth, options.trace, None);
     let start = Instant::now();
     let mut traced = 0u64;
     // A stride coprime with the pixel count visits pixels spread over the whole image.

@@ -101,6 +101,9 @@ pub enum Light {
         normal: Vec3,
         /// Area of the quad, kept for its samples' pdf.
         area: f32,
+        /// The side the quad emits towards when it is a path tracer's emitter (the file's
+        /// `normal`); without one, the side facing the centre of the scene.
+        facing: Option<Vec3>,
     },
     /// A uniformly bright ball.
     Sphere {
@@ -172,6 +175,7 @@ impl Light {
             method,
             normal: cross.normalize_or_zero(),
             area: cross.length(),
+            facing: None,
         }
     }
 
@@ -248,6 +252,36 @@ impl Light {
     }
 
     /// The sampling method of an area light (points use none).
+    /// The solid-angle density at `from` with which [`Light::sample`] (for uniform `u`) picks
+    /// `point` of the light's surface, whose unit normal there is `normal`: what a path tracer
+    /// weighs a direction against when its BSDF sample hits the light. 0 for a point light.
+    pub fn pdf(&self, from: Vec3, point: Vec3, normal: Vec3) -> f32 {
+        let d = point - from;
+        let d2 = d.length_squared();
+        let area_pdf = |area: f32| {
+            let cos_l = normal.dot(d).abs() / d2.sqrt();
+            d2 / (area * cos_l)
+        };
+        match self {
+            Light::Point { .. } => 0.0,
+            Light::Quad { area, .. } => area_pdf(*area),
+            Light::Triangles {
+                cumulative_area, ..
+            } => area_pdf(cumulative_area.last().copied().unwrap_or(0.0)),
+            Light::Sphere { center, radius, .. } => {
+                let r2 = radius * radius;
+                let dc2 = (from - *center).length_squared();
+                if dc2 <= r2 {
+                    area_pdf(4.0 * std::f32::consts::PI * r2)
+                } else {
+                    let sin2_max = r2 / dc2;
+                    let one_minus_cos_max = sin2_max / (1.0 + (1.0 - sin2_max).max(0.0).sqrt());
+                    1.0 / (2.0 * std::f32::consts::PI * one_minus_cos_max)
+                }
+            }
+        }
+    }
+
     pub fn method(&self) -> Method {
         match self {
             Light::Point { .. } => Method::Random,
@@ -528,6 +562,43 @@ mod tests {
 
     /// Under any fall-off, a sphere light above the horizon lights a point as the point light at
     /// its centre with that fall-off: here none at all (a CGR light) and OpenGL attenuation.
+    /// `Light::pdf` gives back the density `Light::sample` reports for the point it chose.
+    #[test]
+    fn pdf_of_a_sampled_point_is_the_samples_pdf() {
+        let tri = [
+            [Vec3::ZERO, Vec3::X, Vec3::Y],
+            [Vec3::X, Vec3::new(1.0, 1.0, 0.5), Vec3::Y],
+        ];
+        let lights = [
+            Light::quad(
+                Vec3::ZERO,
+                Vec3::X * 2.0,
+                Vec3::new(0.0, 0.5, 1.0),
+                unit(),
+                4,
+                Method::Sobol,
+            ),
+            ball(Vec3::new(0.0, 0.0, -1.0), 0.5),
+            ball(Vec3::new(0.0, 0.0, 3.0), 4.0),
+            Light::Triangles {
+                cumulative_area: cumulative_areas(&tri),
+                triangles: tri.to_vec(),
+                intensity: unit(),
+                samples: 4,
+                method: Method::Sobol,
+                surface: 0..0,
+            },
+        ];
+        let from = Vec3::new(0.3, 2.0, 1.5);
+        for l in &lights {
+            for u in grid(8) {
+                let s = l.sample(from, u);
+                let p = l.pdf(from, s.position, s.normal);
+                assert!((p / s.pdf - 1.0).abs() < 1e-3, "{l:?}: {p} vs {}", s.pdf);
+            }
+        }
+    }
+
     #[test]
     fn a_sphere_light_follows_its_lights_falloff_from_its_centre() {
         let l = ball(Vec3::ZERO, 0.5);

@@ -33,6 +33,12 @@ pub struct Material {
     pub eta: f32,
     /// Index into the scene's textures.
     pub texture: Option<u32>,
+    /// Colour of the mirror reflection (a metal's `albedo`; white otherwise). The path tracer
+    /// tints by it; Whitted reflection is untinted.
+    pub mirror: Vec3,
+    /// Radiance the surface emits (`emittance`, or an `emissive` material's colour × intensity).
+    /// A sphere, triangle or quad with an emitting material is an area light.
+    pub emission: Vec3,
 }
 
 impl Default for Material {
@@ -48,6 +54,8 @@ impl Default for Material {
             kt: 0.0,
             eta: 1.0,
             texture: None,
+            mirror: Vec3::ONE,
+            emission: Vec3::ZERO,
         }
     }
 }

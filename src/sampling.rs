@@ -150,6 +150,25 @@ impl SampleKey {
         }
     }
 
+    /// Point `index` of the `count` points this camera sample owns in the pixel's 2D
+    /// Owen-scrambled Sobol set for `dimension`: the set is one sequence over all the pixel's
+    /// samples (camera sample `s` takes points `s·count .. s·count + count`), so the points of a
+    /// dimension are stratified across the whole pixel, not only within one camera sample. The
+    /// path tracer gives each bounce and each light its own dimensions ("padding", as in
+    /// pbrt-v4's `PaddedSobolSampler`).
+    #[inline]
+    pub fn sobol(&self, dimension: u64, index: u32, count: u32) -> Vec2 {
+        let [x, y, _, _] = self.sobol4(dimension, index, count);
+        Vec2::new(x, y)
+    }
+
+    /// [`SampleKey::sobol`] in four dimensions: the first two are the same point's.
+    #[inline]
+    pub fn sobol4(&self, dimension: u64, index: u32, count: u32) -> [f32; 4] {
+        let seed = (hash(&[self.pixel_key, dimension, 0x9a7b_50b0]) >> 32) as u32;
+        sobol4(self.sample.wrapping_mul(count).wrapping_add(index), seed)
+    }
+
     /// Sample `index` of `count` samples placed with `method` in the unit square, for a set of
     /// samples taken at one shading point (e.g. the shadow rays towards one area light). `dimension`
     /// separates different sets at the same point.
@@ -218,10 +237,23 @@ pub fn sobol2(index: u32, seed: u32) -> Vec2 {
     } else {
         (hash(&[seed as u64, block as u64]) >> 32) as u32
     };
-    Vec2::new(
-        sobol_burley::sample(i, 0, seed),
-        sobol_burley::sample(i, 1, seed),
-    )
+    let [x, y, _, _] = sobol_burley::sample_4d(i, 0, seed);
+    Vec2::new(x, y)
+}
+
+/// Point `index` of the 4D Owen-scrambled Sobol set keyed by `seed`: dimensions 0 to 3 of the
+/// sequence, the first two exactly those of [`sobol2`] (the crate computes the four at once, in
+/// SIMD lanes where the CPU has them, with the same integer arithmetic as one at a time).
+#[inline]
+pub fn sobol4(index: u32, seed: u32) -> [f32; 4] {
+    const LEN: u32 = 1 << 16;
+    let (block, i) = (index / LEN, index % LEN);
+    let seed = if block == 0 {
+        seed
+    } else {
+        (hash(&[seed as u64, block as u64]) >> 32) as u32
+    };
+    sobol_burley::sample_4d(i, 0, seed)
 }
 
 /// The side `k` of the `k×k` grid of strata when `count` is a perfect square, else 0.

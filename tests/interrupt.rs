@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
 
 use raytracer::accel::{Accel, AccelKind};
-use raytracer::integrator::Tracer;
+use raytracer::integrator::{Integrator, Kind, TraceOptions};
 use raytracer::render::{render, render_with_accel_counting, RenderError, RenderOptions};
 use raytracer::sampling::SampleKey;
 use raytracer::scene::{load_str, LoadOptions, Scene};
@@ -60,25 +60,28 @@ fn a_cancelled_camera_sample_stops_inside_its_shadow_rays_and_its_ray_tree() {
     let scene = heavy_scene(8, 256, 100_000);
     let accel = Accel::build(&scene.primitives, AccelKind::Auto, 4);
     let flag = AtomicBool::new(true);
-    let mut tracer = Tracer::new(&scene, &accel, u32::MAX);
-    tracer.cancel = Some(&flag);
-    for (x, y) in [(4, 7), (4, 4), (1, 6)] {
-        let key = SampleKey::new(x, y, 0, 1, 0);
-        let ray = scene.camera.generate_ray(
-            x,
-            y,
-            raytracer::math::Vec2::splat(0.5),
-            raytracer::math::Vec2::splat(0.5),
-        );
-        // Each of these pixels sees the floor or the sphere: a shading point with shadow rays.
-        assert!(accel
-            .closest(&scene.primitives, &ray, f32::INFINITY)
-            .is_some());
-        tracer.trace_camera(&ray, &key);
+    for kind in [Kind::Whitted, Kind::Path] {
+        let integrator = Integrator::new(&scene, &accel, kind);
+        let mut tracer = integrator.tracer(u32::MAX, TraceOptions::default(), Some(&flag));
+        for (x, y) in [(4, 7), (4, 4), (1, 6)] {
+            let key = SampleKey::new(x, y, 0, 1, 0);
+            let ray = scene.camera.generate_ray(
+                x,
+                y,
+                raytracer::math::Vec2::splat(0.5),
+                raytracer::math::Vec2::splat(0.5),
+            );
+            // Each of these pixels sees the floor or the sphere: a shading point with shadow rays.
+            assert!(accel
+                .closest(&scene.primitives, &ray, f32::INFINITY)
+                .is_some());
+            tracer.trace_camera(&ray, &key);
+        }
+        let counts = tracer.counts();
+        assert_eq!(counts.camera, 3, "{kind}");
+        assert_eq!(counts.secondary, 0, "{kind}");
+        assert_eq!(counts.shadow, 0, "{kind}");
     }
-    assert_eq!(tracer.counts.camera, 3);
-    assert_eq!(tracer.counts.secondary, 0);
-    assert_eq!(tracer.counts.shadow, 0);
 }
 
 #[test]

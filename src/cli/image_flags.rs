@@ -67,9 +67,14 @@ pub(crate) struct ImageFlags {
     /// Most primitives per BVH leaf.
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u64).range(1..=255))]
     pub leaf_size: u64,
-    /// Cap on reflection/refraction depth, on top of the scene's nbounces.
+    /// Cap on reflection/refraction depth (path tracing: on the path's bounces), on top of the
+    /// scene's nbounces.
     #[arg(long)]
     pub max_depth: Option<u32>,
+    /// Integrator: whitted (ray trees with Blinn-Phong direct light) or path (path tracing with
+    /// next-event estimation and MIS). Default: the scene's rendermode (pathtrace → path).
+    #[arg(long)]
+    pub integrator: Option<crate::integrator::Kind>,
 }
 
 impl ImageFlags {
@@ -97,9 +102,13 @@ impl ImageFlags {
             (None, Some(_)) => Some(TIME_LIMIT_SPP),
             (spp, _) => spp,
         };
-        let default_method = match adaptive {
-            Some(_) => Method::Sobol,
-            None => Method::Jittered,
+        let integrator = self
+            .integrator
+            .unwrap_or(crate::integrator::Kind::of_scene(scene));
+        // The path tracer's own dimensions are Sobol; its pixel and lens samples follow.
+        let default_method = match (adaptive, integrator) {
+            (Some(_), _) | (None, crate::integrator::Kind::Path) => Method::Sobol,
+            (None, crate::integrator::Kind::Whitted) => Method::Jittered,
         };
         RenderOptions {
             spp: spp_cap.or(scene.pixel_samples).unwrap_or(1),
@@ -119,6 +128,7 @@ impl ImageFlags {
                 adaptive_lights: self.adaptive_lights,
                 cutoff: self.adc_bailout,
             },
+            integrator: Some(integrator),
             ..RenderOptions::default()
         }
     }

@@ -123,7 +123,7 @@ pub fn fingerprint(scene: &Scene, options: &RenderOptions) -> std::io::Result<u6
         h.field(&read_input(input)?);
     }
     let settings = format!(
-        "{}x{} spp={} pixel={:?} seed={} max_depth={} trace={:?} adaptive={:?}",
+        "{}x{} spp={} pixel={:?} seed={} max_depth={} trace={:?} adaptive={:?} integrator={}",
         scene.camera.width,
         scene.camera.height,
         options.spp.max(1),
@@ -131,7 +131,10 @@ pub fn fingerprint(scene: &Scene, options: &RenderOptions) -> std::io::Result<u6
         options.seed,
         options.max_depth,
         options.trace,
-        options.adaptive
+        options.adaptive,
+        options
+            .integrator
+            .unwrap_or(crate::integrator::Kind::of_scene(scene))
     );
     h.field(settings.as_bytes());
     Ok(h.0)

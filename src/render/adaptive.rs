@@ -151,7 +151,7 @@ pub(super) fn trace(
                     let x = region.x0 + i as u32;
                     for s in start..end {
                         if tracer.cancelled() {
-                            return tracer.counts;
+                            return tracer.counts();
                         }
                         let c = work.sample(&mut tracer, x, y, s);
                         next.all.add(c);
@@ -162,7 +162,7 @@ pub(super) fn trace(
                     next.count = end;
                     *p = next;
                 }
-                tracer.counts
+                tracer.counts()
             })
             .reduce(RayCounts::default, |mut a, b| {
                 a.add(&b);

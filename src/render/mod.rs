@@ -20,7 +20,7 @@ use rayon::prelude::*;
 use crate::accel::{Accel, AccelKind};
 use crate::film::sum::MAX_SAMPLES;
 use crate::film::{Film, PixelRect, PixelSum};
-use crate::integrator::{RayCounts, TraceOptions, Tracer};
+use crate::integrator::{Integrator, Kind, RayCounts, TraceOptions, Tracer};
 use crate::math::{Vec2, Vec3};
 use crate::sampling::{Method, SampleKey};
 use crate::scene::Scene;
@@ -42,6 +42,8 @@ pub struct RenderOptions {
     pub max_depth: u32,
     /// Light-sampling overrides and work-skipping switches (the default changes nothing).
     pub trace: TraceOptions,
+    /// The integrator, in place of the one the scene's `rendermode` asks for.
+    pub integrator: Option<Kind>,
     /// Show a progress bar on stderr.
     pub progress: bool,
     /// Set from outside (e.g. on Ctrl-C) to stop the render early; the output is then marked
@@ -70,6 +72,7 @@ impl Default for RenderOptions {
             leaf_size: 4,
             max_depth: u32::MAX,
             trace: TraceOptions::default(),
+            integrator: None,
             progress: false,
             cancel: None,
             crop: None,
@@ -295,9 +298,14 @@ impl Plan {
             spp,
             buffers,
         } = self;
-        let work = Work {
+        let integrator = Integrator::new(
             scene,
             accel,
+            options.integrator.unwrap_or(Kind::of_scene(scene)),
+        );
+        let work = Work {
+            scene,
+            integrator: &integrator,
             options,
             window,
             samples: samples.clone(),
@@ -361,7 +369,7 @@ impl Plan {
 /// One render's inputs, shared by its tiles.
 pub(crate) struct Work<'a> {
     scene: &'a Scene,
-    accel: &'a Accel,
+    integrator: &'a Integrator<'a>,
     options: &'a RenderOptions,
     window: PixelRect,
     samples: Range<u32>,
@@ -440,10 +448,11 @@ impl Work<'_> {
 
     /// A tracer for one tile's or row's pixels.
     fn tracer(&self) -> Tracer<'_> {
-        let mut tracer = Tracer::new(self.scene, self.accel, self.options.max_depth);
-        tracer.options = self.options.trace;
-        tracer.cancel = self.options.cancel.as_deref();
-        tracer
+        self.integrator.tracer(
+            self.options.max_depth,
+            self.options.trace,
+            self.options.cancel.as_deref(),
+        )
     }
 
     /// The radiance of camera sample `s` (of `spp`) of pixel `(x, y)`.
@@ -476,7 +485,7 @@ impl Work<'_> {
             let mut sum = PixelSum::default();
             for s in self.samples.clone() {
                 if tracer.cancelled() {
-                    return tracer.counts;
+                    return tracer.counts();
                 }
                 sum.add(self.sample(&mut tracer, x, y, s));
             }
@@ -485,7 +494,7 @@ impl Work<'_> {
                 done.fetch_add(1, Ordering::Relaxed);
             }
         }
-        tracer.counts
+        tracer.counts()
     }
 }
 

@@ -85,11 +85,22 @@ struct Named {
     primitives: Range<u32>,
 }
 
-/// The `shapeid`s of the lights read so far and the ids of the shapes.
+/// A shape whose material emits.
+struct Glowing {
+    kind: String,
+    at: Location,
+    primitives: Range<u32>,
+    /// The radiance it emits.
+    radiance: Vec3,
+}
+
+/// The `shapeid`s of the lights read so far, the ids of the shapes, and the shapes whose
+/// material emits.
 #[derive(Default)]
 pub(super) struct Emitters {
     wanted: Vec<Wanted>,
     shapes: Vec<Named>,
+    glowing: Vec<Glowing>,
 }
 
 impl Emitters {
@@ -128,6 +139,24 @@ impl Emitters {
             kind,
             at: s.location(),
             primitives: primitives.start as u32..primitives.end as u32,
+        });
+    }
+
+    /// Records that the shape `s`, whose primitives are `primitives`, has a material emitting
+    /// `radiance`: once resolved it is an area light of that radiance for the path tracer
+    /// (intensity `radiance · A / π` for its area `A`, falling off as `1/d²`, so that the
+    /// conventions of `integrator::emitters` give back `radiance`; Whitted shading sees a light
+    /// of that intensity and fall-off, and the shape's own emission).
+    pub(super) fn glowing(&mut self, s: &Node, primitives: Range<usize>, radiance: Vec3) {
+        let kind = s
+            .get("type")
+            .and_then(|n| n.str().ok().map(str::to_ascii_lowercase))
+            .unwrap_or_default();
+        self.glowing.push(Glowing {
+            kind,
+            at: s.location(),
+            primitives: primitives.start as u32..primitives.end as u32,
+            radiance,
         });
     }
 
@@ -173,40 +202,14 @@ impl Emitters {
                 skipped.insert(w.light);
                 continue;
             }
-            let light = if SPHERE_TYPES.contains(&shape.kind.as_str()) {
-                match prims {
-                    [Primitive {
-                        shape: Shape::Sphere(s),
-                        ..
-                    }] => Some(Light::Sphere {
-                        center: s.center,
-                        radius: s.radius,
-                        intensity: w.intensity,
-                        samples: w.samples,
-                        method: w.method,
-                        surface: shape.primitives.clone(),
-                    }),
-                    _ => None,
-                }
-            } else if FLAT_TYPES.contains(&shape.kind.as_str()) {
-                let triangles: Option<Vec<[Vec3; 3]>> = prims
-                    .iter()
-                    .map(|p| match &p.shape {
-                        Shape::Triangle(t) => Some(t.p),
-                        _ => None,
-                    })
-                    .collect();
-                triangles.map(|triangles| Light::Triangles {
-                    cumulative_area: cumulative_areas(&triangles),
-                    triangles,
-                    intensity: w.intensity,
-                    samples: w.samples,
-                    method: w.method,
-                    surface: shape.primitives.clone(),
-                })
-            } else {
-                None
-            };
+            let light = surface_light(
+                &shape.kind,
+                prims,
+                shape.primitives.clone(),
+                |_| w.intensity,
+                w.samples,
+                w.method,
+            );
             let Some(light) = light else {
                 let kind = if matches!(
                     prims,
@@ -229,6 +232,35 @@ impl Emitters {
                 ));
             };
             lights[w.light] = light;
+        }
+        for g in &self.glowing {
+            let prims = &primitives[g.primitives.start as usize..g.primitives.end as usize];
+            let light = surface_light(
+                &g.kind,
+                prims,
+                g.primitives.clone(),
+                |area| {
+                    let i = g.radiance * (area / std::f32::consts::PI);
+                    Intensity {
+                        diffuse: i,
+                        specular: i,
+                        falloff: crate::light::Falloff::InverseSquare { scale: 1.0 },
+                    }
+                },
+                1,
+                Method::Sobol,
+            );
+            match light {
+                Some(l) => lights.push(l),
+                None => warnings.push(Warning {
+                    location: g.at.clone(),
+                    message: format!(
+                        "only a sphere, a triangle or a quad can emit; this '{}' is drawn with \
+                         its emission ignored",
+                        g.kind
+                    ),
+                }),
+            }
         }
         if !skipped.is_empty() {
             let mut i = 0;
@@ -266,6 +298,55 @@ impl Emitters {
             format!("the shapes' ids are: {}{tail}", shown.join(", "))
         };
         format!("no shape has the id '{id}' ({listed})")
+    }
+}
+
+/// The area light whose surface is the primitives `prims` (numbered `range`) of a shape of type
+/// `kind`: a sphere, or the triangles of a flat shape; `None` for any other. `intensity` is given
+/// the light's area.
+fn surface_light(
+    kind: &str,
+    prims: &[Primitive],
+    range: Range<u32>,
+    intensity: impl Fn(f32) -> Intensity,
+    samples: u32,
+    method: Method,
+) -> Option<Light> {
+    if SPHERE_TYPES.contains(&kind) {
+        match prims {
+            [Primitive {
+                shape: Shape::Sphere(s),
+                ..
+            }] => Some(Light::Sphere {
+                center: s.center,
+                radius: s.radius,
+                intensity: intensity(4.0 * std::f32::consts::PI * s.radius * s.radius),
+                samples,
+                method,
+                surface: range,
+            }),
+            _ => None,
+        }
+    } else if FLAT_TYPES.contains(&kind) {
+        let triangles: Vec<[Vec3; 3]> = prims
+            .iter()
+            .map(|p| match &p.shape {
+                Shape::Triangle(t) => Some(t.p),
+                _ => None,
+            })
+            .collect::<Option<_>>()?;
+        let cumulative_area = cumulative_areas(&triangles);
+        let area = cumulative_area.last().copied().unwrap_or(0.0);
+        (area > 0.0).then(|| Light::Triangles {
+            cumulative_area,
+            triangles,
+            intensity: intensity(area),
+            samples,
+            method,
+            surface: range,
+        })
+    } else {
+        None
     }
 }
 

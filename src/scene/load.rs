@@ -157,6 +157,7 @@ pub fn load_str(text: &str, path: &Path, options: &LoadOptions) -> Result<Scene,
         lights: Vec::new(),
         ambient: None,
         variant: Variant::V2021,
+        mode: RenderMode::Phong,
         emitters: Emitters::default(),
         triangles: 0,
         inputs: Vec::new(),
@@ -196,6 +197,26 @@ const PIXEL_SAMPLE_KEYS: &[&str] = &[
 ];
 /// Top-level shadow rays per area light and shading point (the total).
 const LIGHT_SAMPLE_KEYS: &[&str] = &["lightsample", "shadow samples", "spp", "sample_number"];
+/// Material `type`s the loader knows: the Blinn-Phong model the other keys describe, and the
+/// physically based forms of path-tracing files (see `Loader::material_kind`).
+const MATERIAL_TYPES: &[&str] = &[
+    "phong",
+    "blinnphong",
+    "blinn-phong",
+    "blinn_phong",
+    "diffuse",
+    "lambertian",
+    "matte",
+    "metal",
+    "conductor",
+    "mirror",
+    "dielectric",
+    "glass",
+    "emissive",
+    "emitter",
+    "light",
+    "emission",
+];
 /// A thin-lens camera's lens radius.
 const LENS_RADIUS_KEYS: &[&str] = &["lensRadius", "lensradius", "lens_radius", "radius"];
 /// A thin-lens camera's lens diameter.
@@ -297,6 +318,8 @@ struct Loader<'o> {
     /// Ambient light given by the file (a scene key or a light of type `ambient`).
     ambient: Option<Vec3>,
     variant: Variant,
+    /// The file's `rendermode` (read first).
+    mode: RenderMode,
     /// Area lights whose surface is a shape of the scene, resolved after the shapes are read.
     emitters: Emitters,
     triangles: usize,
@@ -396,15 +419,7 @@ impl<'o> Loader<'o> {
             Some(n) => match n.str()?.to_ascii_lowercase().as_str() {
                 "binary" => RenderMode::Binary,
                 "phong" => RenderMode::Phong,
-                "pathtrace" | "pathtracer" | "pathtracing" | "path" | "pt" => {
-                    self.warn(
-                        &n,
-                        "this file asks for path tracing, which is not implemented: rendered \
-                         with phong (Whitted ray tracing: direct light, mirrors, glass; no \
-                         indirect light)",
-                    );
-                    RenderMode::Phong
-                }
+                "pathtrace" | "pathtracer" | "pathtracing" | "path" | "pt" => RenderMode::Path,
                 other => {
                     self.warn(
                         &n,
@@ -423,6 +438,7 @@ impl<'o> Loader<'o> {
             Variant::V2019
         };
         self.variant = variant;
+        self.mode = mode;
         let (camera, exposure, lens_samples) = self.camera(root, &camera_node)?;
         let pixel_method = self.sampling_method(&camera_node)?;
         // Hit/miss images are not exposed: a hit is full red whatever the camera says.
@@ -484,6 +500,13 @@ impl<'o> Loader<'o> {
                 let first = self.primitives.len();
                 self.shape(&s, mode, &mut libraries)?;
                 self.emitters.shape(&s, first..self.primitives.len());
+                if let Some(p) = self.primitives.get(first) {
+                    let emission = self.materials[p.material as usize].emission;
+                    if emission.max_element() > 0.0 {
+                        self.emitters
+                            .glowing(&s, first..self.primitives.len(), emission);
+                    }
+                }
             }
         }
         std::mem::take(&mut self.emitters).resolve(
@@ -498,6 +521,7 @@ impl<'o> Loader<'o> {
             );
         }
         let (pixel_samples, light_samples) = self.sample_counts(root, lens_samples)?;
+        self.renderer_switches(root)?;
         // Last, when every lookup is done: the keys none of them read.
         for (node, message) in keys::unknown_keys(root) {
             self.warn(&node, message);
@@ -575,7 +599,9 @@ impl<'o> Loader<'o> {
             n.u32()?;
             self.warn(
                 &n,
-                "'path_sample_num' counts a path tracer's bounce rays; indirect light is not traced here, so it is ignored",
+                "'path_sample_num' (rays per bounce of a branching path tracer) is ignored: paths \
+                 here take one scattered ray per bounce, and their number per pixel is the pixel \
+                 samples (--spp)",
             );
         }
         Ok((pixel, light))
@@ -594,7 +620,14 @@ impl<'o> Loader<'o> {
             Some(t) => t.str()?.to_ascii_lowercase(),
             None => "pinhole".into(),
         };
+        // A top-level `use_dof` (with `aperture` and `focus_distance` beside it) turns the
+        // camera into a thin lens, as the files of one CGR renderer write it.
+        let use_dof = match root.get("use_dof") {
+            Some(n) => n.bool()?,
+            None => false,
+        };
         let thin_lens = match kind.as_str() {
+            _ if use_dof => true,
             "pinhole" | "perspective" => false,
             "thinlens" | "thinlen" | "thin_lens" | "lens" | "aperture" | "dof" => true,
             other => {
@@ -970,6 +1003,10 @@ impl<'o> Loader<'o> {
                 intensity,
             });
             return Ok(());
+        } else if let (Some(p), RenderMode::Path) = (corner("position")?, self.mode) {
+            // The one renderer whose path-tracing files give area lights only a position makes
+            // them 1 × 1 squares spanning x and y, centred there (docs/scene-format.md).
+            (p - 0.5 * (Vec3::X + Vec3::Y), Vec3::X, Vec3::Y)
         } else if let Some(p) = corner("position")? {
             self.warn(
                 l,
@@ -991,9 +1028,17 @@ impl<'o> Loader<'o> {
             ));
         };
         let (samples, method) = self.area_sampling(l)?;
-        self.lights.push(Light::quad(
-            origin, edge_u, edge_v, intensity, samples, method,
-        ));
+        let mut light = Light::quad(origin, edge_u, edge_v, intensity, samples, method);
+        if let Some(n) = l.get("normal") {
+            let v = n.vec3()?;
+            if v == Vec3::ZERO {
+                return Err(n.error("an area light's normal must not be zero"));
+            }
+            if let Light::Quad { facing, .. } = &mut light {
+                *facing = Some(v.normalize());
+            }
+        }
+        self.lights.push(light);
         Ok(())
     }
 
@@ -1561,6 +1606,9 @@ impl<'o> Loader<'o> {
         let mut m = Material::default();
         // A shape without a `material` may carry the material's keys itself (as some files do).
         let mut node = s.get("material").or_else(|| Some(s.clone()));
+        // Whether `node` is a material object rather than the shape standing in for one (whose
+        // `type` is the shape's).
+        let own_material = s.peek("material").is_some();
         if let Some(named) = node.as_ref().and_then(|n| n.str().ok()) {
             match libraries.materials.find(named) {
                 Some((_, def)) => node = Some(def.clone()),
@@ -1665,6 +1713,9 @@ impl<'o> Loader<'o> {
                     return Err(at.error(format!("{name} must be ≥ 0, found {v}")));
                 }
             }
+            if own_material {
+                self.material_kind(n, &mut m)?;
+            }
         }
         node.iter()
             .chain([s])
@@ -1672,7 +1723,7 @@ impl<'o> Loader<'o> {
         if let Some(n) = &node {
             n.mark_read(&["diffuse"]);
         }
-        if mode == RenderMode::Phong {
+        if mode != RenderMode::Binary {
             let tex_node = node
                 .as_ref()
                 .and_then(|n| {
@@ -1686,6 +1737,136 @@ impl<'o> Loader<'o> {
         }
         self.materials.push(m);
         Ok(self.materials.len() as u32 - 1)
+    }
+
+    /// Top-level switches of the renderers path-tracing files were written for. Sampling
+    /// strategies change how fast an image converges, not what it converges to, and global
+    /// illumination and caustics are what the path tracer does: those are read quietly.
+    /// Post-processes this renderer does not do (a denoiser, a blur, a tone map) are warned about
+    /// when a file turns them on.
+    fn renderer_switches(&mut self, root: &Node) -> Result<(), SceneError> {
+        for key in [
+            "use_stratified_sampling",
+            "use_importance_sampling",
+            "usegi",
+            "useGI",
+            "usecaustics",
+        ] {
+            if let Some(n) = root.get(key) {
+                n.bool()?;
+            }
+        }
+        for key in [
+            "importance_sampling_min_samples",
+            "importance_sampling_max_samples",
+        ] {
+            if let Some(n) = root.get(key) {
+                n.f64()?;
+            }
+        }
+        for (key, what) in [
+            ("use_denoiser", "a denoiser"),
+            ("use_gaussian_blur", "a Gaussian blur"),
+            ("use_tone_mapping", "a tone map (choose one with --tonemap)"),
+        ] {
+            if let Some(n) = root.get(key) {
+                if n.bool()? {
+                    self.warn(
+                        &n,
+                        format!("{what} is not applied: the image is the renderer's radiance"),
+                    );
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The physically based material forms path-tracing files use (`"type"` with `albedo`,
+    /// `roughness`, `ior`, an emitted `colour` × `intensity`), and `emittance` on any material:
+    /// see `docs/scene-format.md`, "Material types".
+    fn material_kind(&mut self, n: &Node, m: &mut Material) -> Result<(), SceneError> {
+        if let Some(e) = n.get("emittance") {
+            m.emission = e.color()?;
+        }
+        let Some(t) = n.peek("type") else {
+            return Ok(());
+        };
+        let Ok(kind) = t.str().map(str::to_ascii_lowercase) else {
+            return Ok(()); // not a type name: left for the unknown-key warning
+        };
+        if !MATERIAL_TYPES.contains(&kind.as_str()) {
+            return Ok(()); // a model of another renderer: left for the unknown-key warning
+        }
+        n.mark_read(&["type"]);
+        let albedo = match n.get("albedo") {
+            Some(a) => Some(a.color()?),
+            None => None,
+        };
+        match kind.as_str() {
+            "diffuse" | "lambertian" | "matte" => {
+                m.kd = 1.0;
+                m.ks = 0.0;
+                m.diffuse = albedo.unwrap_or(m.diffuse);
+            }
+            "metal" | "conductor" | "mirror" => {
+                let tint = albedo.unwrap_or(m.specular);
+                let roughness = match n.get_any(&["roughness", "fuzz"]) {
+                    Some(r) => {
+                        let v = r.f32()?;
+                        if !(0.0..=1.0).contains(&v) {
+                            return Err(
+                                r.error(format!("a metal's roughness is in [0, 1], found {v}"))
+                            );
+                        }
+                        v
+                    }
+                    None => 0.0,
+                };
+                m.kd = 0.0;
+                if roughness == 0.0 {
+                    m.ks = 0.0;
+                    m.kr = 1.0;
+                    m.mirror = tint;
+                } else {
+                    // A Beckmann roughness α as a Blinn-Phong exponent, 2/α² − 2 (Walter et al.,
+                    // "Microfacet Models for Refraction through Rough Surfaces", EGSR 2007, §5.2).
+                    m.ks = 1.0;
+                    m.specular = tint;
+                    m.exponent = (2.0 / (roughness * roughness) - 2.0).max(0.0);
+                }
+            }
+            "dielectric" | "glass" => {
+                m.kd = 0.0;
+                m.ks = 0.0;
+                m.kt = 1.0;
+                if m.eta <= 0.0 {
+                    let at = n.get_any(&["ior", "eta", "refractiveindex"]).unwrap_or(t);
+                    return Err(at.error(format!(
+                        "the index of refraction must be > 0, found {}",
+                        m.eta
+                    )));
+                }
+            }
+            "emissive" | "emitter" | "light" | "emission" => {
+                let colour = match n.get_any(&["colour", "color", "emission", "emittance"]) {
+                    Some(c) => c.color()?,
+                    None => Vec3::ONE,
+                };
+                let strength = opt_f32(n, &["intensity", "strength"])?.unwrap_or(1.0);
+                if !(strength >= 0.0 && strength.is_finite()) {
+                    let at = n.get_any(&["intensity", "strength"]).unwrap_or(t);
+                    return Err(at.error(format!(
+                        "an emitter's intensity must be a finite number ≥ 0, found {strength}"
+                    )));
+                }
+                m.emission = colour * strength;
+                m.kd = 0.0;
+                m.ks = 0.0;
+                m.diffuse = Vec3::ZERO;
+            }
+            _ => {} // Blinn-Phong: the keys already say it all
+        }
+        Ok(())
     }
 
     /// A texture reference: the name of a texture library entry, a path string, or an object

@@ -24,13 +24,15 @@ use crate::material::{Material, Reflection};
 use crate::math::Vec3;
 use crate::texture::Texture;
 
-/// `rendermode`: shaded, or hit/miss only.
+/// `rendermode`: shaded by Whitted ray tracing, hit/miss only, or path traced.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum RenderMode {
     #[default]
     Phong,
     /// Hits red, misses black.
     Binary,
+    /// `pathtrace` and its spellings: the path tracer (`integrator::path`).
+    Path,
 }
 
 /// Which of the coursework's three scene-format variants a file follows.

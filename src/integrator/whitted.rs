@@ -6,10 +6,11 @@
 //! and shading normal `n` turned towards the viewer (surfaces are two-sided):
 //!
 //! ```text
-//! L = ka·A·c + Σ_lights Σ_samples w·V·E(d)·( kd·c·id·max(0, n·l) + ks·specularcolor·is·max(0, n·h)^p )
+//! L = Le + ka·A·c + Σ_lights Σ_samples w·V·E(d)·( kd·c·id·max(0, n·l) + ks·specularcolor·is·max(0, n·h)^p )
 //!   + (kr + kt·F)·L(reflected)  +  kt·(1 − F)·L(refracted)
 //! ```
-//! where `A` is the scene's ambient light (0 unless the file gives one, or the file is CGR). In
+//! where `Le` is the material's emitted radiance (an `emissive` material; 0 otherwise), `A` the
+//! scene's ambient light (0 unless the file gives one, or the file is CGR). In
 //! CGR files an opaque mirror blends instead ([`Reflection::Blended`]): its own terms are scaled by
 //! `1 − kr`, so that a `reflectivity` 1 mirror shows only what it reflects.
 //! Above, `E(d)` is the light's fall-off, `w` the sample's share of the light (`1/n` of
@@ -51,20 +52,18 @@ use crate::light::Light;
 use crate::material::{highlight, Reflection};
 use crate::math::{fresnel_dielectric, reflect, refract, Vec2, Vec3};
 use crate::ray::{Hit, Ray, SpawnPoints};
-use crate::sampling::{Method, SampleKey};
+use crate::sampling::SampleKey;
 use crate::scene::{RenderMode, Scene};
 
-/// Shadow rays towards one area light between two looks at [`Tracer::cancel`]: one look is one
+use super::{finite_radiance, RayCounts, TraceOptions, LIGHT_CLEARANCE};
+
+/// Shadow rays towards one area light between two looks at [`Whitted::cancel`]: one look is one
 /// relaxed load, small beside this many rays, and the longest stretch without one (an area light
 /// of the largest allowed sample count) stays a small fraction of the ray count.
 const SHADOW_RAYS_PER_CANCEL_CHECK: u32 = 256;
 
 /// Colour of a hit in `rendermode: binary` (misses are black), as in the CGR specification.
 pub const BINARY_HIT: Vec3 = Vec3::new(1.0, 0.0, 0.0);
-
-/// A light exactly on a surface (an area light drawn onto a ceiling) must not be shadowed by that
-/// surface: shadow rays stop this fraction of their length short of the light.
-const LIGHT_CLEARANCE: f32 = 1e-4;
 
 /// Most primitives an area light's shadow rays from one point test one by one (see [`Beam`]);
 /// past this many the whole accelerator is queried instead, which for a tree of that size costs
@@ -79,20 +78,6 @@ const MAX_SHADOW_CROSSINGS: u32 = 32;
 /// `nbounces: 50` would never finish); past this budget a branch returns only its direct light.
 /// A tree of 12 full levels fits, and no test or bundled scene reaches it.
 pub const MAX_SECONDARY_RAYS_PER_SAMPLE: u32 = 4096;
-
-/// What reaches the film: NaN channels (0·∞ in extreme scenes) become 0, infinite or negative
-/// ones are clamped to [0, f32::MAX], so a blown-out pixel stays white rather than turning black.
-#[inline]
-pub fn finite_radiance(c: Vec3) -> Vec3 {
-    let fix = |x: f32| {
-        if x.is_nan() {
-            0.0
-        } else {
-            x.clamp(0.0, f32::MAX)
-        }
-    };
-    Vec3::new(fix(c.x), fix(c.y), fix(c.z))
-}
 
 /// Probe points of [`TraceOptions::adaptive_lights`]: a 3×3 grid over the light (corners, edge
 /// midpoints, centre), the outer ones inset slightly so that a light whose edge touches a wall is
@@ -112,58 +97,6 @@ const ADAPTIVE_PROBES: [Vec2; 9] = {
         Vec2::new(1.0 - E, 1.0 - E),
     ]
 };
-
-/// The POV-Ray default `adc_bailout`: one 8-bit step.
-pub const DEFAULT_CUTOFF: f32 = 1.0 / 255.0;
-
-/// Changes to how a [`Tracer`] samples lights and prunes the ray tree. The default changes
-/// nothing: every light is sampled as its scene says and every ray is traced.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct TraceOptions {
-    /// Sample every area light with this method instead of its own.
-    pub light_method: Option<Method>,
-    /// Take this many shadow rays per shading point towards every area light instead of its own
-    /// count (the total, whatever the method).
-    pub light_samples: Option<u32>,
-    /// Probe a 3×3 grid on each area light first and skip its other shadow rays where the probes agree (see
-    /// the module docs).
-    pub adaptive_lights: bool,
-    /// Do not trace reflection or refraction rays whose accumulated weight is below this.
-    pub cutoff: Option<f32>,
-}
-
-impl TraceOptions {
-    /// Shadow rays per shading point and their placement for `light`.
-    pub fn light_plan(&self, light: &Light) -> (u32, Method) {
-        match light {
-            Light::Point { .. } => (1, light.method()),
-            Light::Quad { .. } | Light::Sphere { .. } | Light::Triangles { .. } => (
-                self.light_samples.unwrap_or(light.sample_count()).max(1),
-                self.light_method.unwrap_or(light.method()),
-            ),
-        }
-    }
-}
-
-/// Counts of the rays traced, by kind.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct RayCounts {
-    pub camera: u64,
-    pub secondary: u64,
-    pub shadow: u64,
-}
-
-impl RayCounts {
-    pub fn total(&self) -> u64 {
-        self.camera + self.secondary + self.shadow
-    }
-
-    pub fn add(&mut self, o: &RayCounts) {
-        self.camera += o.camera;
-        self.secondary += o.secondary;
-        self.shadow += o.shadow;
-    }
-}
 
 /// A reflection or refraction ray not yet traced, and the factor its radiance is scaled by in
 /// its parent's.
@@ -195,8 +128,8 @@ impl Open {
     }
 }
 
-/// Traces rays through one scene. Cheap to create; one per worker.
-pub struct Tracer<'a> {
+/// Traces Whitted ray trees through one scene. Cheap to create; one per worker.
+pub struct Whitted<'a> {
     pub scene: &'a Scene,
     pub accel: &'a Accel,
     /// Cap on recursion on top of the scene's `nbounces`.
@@ -216,9 +149,9 @@ pub struct Tracer<'a> {
     candidates: Vec<u32>,
 }
 
-impl<'a> Tracer<'a> {
-    pub fn new(scene: &'a Scene, accel: &'a Accel, max_depth: u32) -> Tracer<'a> {
-        Tracer {
+impl<'a> Whitted<'a> {
+    pub fn new(scene: &'a Scene, accel: &'a Accel, max_depth: u32) -> Whitted<'a> {
+        Whitted {
             scene,
             accel,
             max_depth,
@@ -232,7 +165,7 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// Whether [`Tracer::cancel`] is set.
+    /// Whether [`Whitted::cancel`] is set.
     #[inline]
     pub fn cancelled(&self) -> bool {
         self.cancel.is_some_and(|c| c.load(Ordering::Relaxed))
@@ -322,7 +255,7 @@ impl<'a> Tracer<'a> {
         let Some((prim, cand)) = self.accel.closest(&scene.primitives, ray, f32::INFINITY) else {
             return match scene.mode {
                 RenderMode::Binary => Vec3::ZERO,
-                RenderMode::Phong => scene.background,
+                RenderMode::Phong | RenderMode::Path => scene.background,
             };
         };
         if scene.mode == RenderMode::Binary {
@@ -348,6 +281,9 @@ impl<'a> Tracer<'a> {
         } else {
             material.ka * scene.ambient * base
         };
+        if material.emission != Vec3::ZERO {
+            color += material.emission;
+        }
         let spawn = hit.spawn_points();
         let mut candidates = std::mem::take(&mut self.candidates);
         for (li, light) in scene.lights.iter().enumerate() {

@@ -1,0 +1,412 @@
+//! Scattering at a surface, for the path tracer: the scene's materials as energy-conserving BSDFs.
+//!
+//! A material of base colour `c` (its texture, or `diffusecolor`) becomes the mixture
+//!
+//! ```text
+//! f = s·(ρd/π + ρg·N(e)·cos^e θh)  +  r·(perfect mirror)  +  t·(smooth dielectric)
+//! ```
+//! with `ρd = kd·c`, `ρg = ks·specularcolor`, `e` = `specularexponent`, `θh` the angle between the
+//! shading normal and the half vector of the two directions, and the lobe weights
+//! - `r` = `reflectivity` (`kr`) of a reflective material, at most 1 (the mirror reflects the
+//!   colour `mirror`: a metal's `albedo`, else white);
+//! - `t` = the transmission `kt` of a refractive one (`isrefractive`), at most `1 − r`;
+//! - `s = 1 − r − t` for the surface's own diffuse and glossy reflection.
+//!
+//! The glossy lobe is Blinn-Phong normalised by Giesen's factor
+//! `N(e) = (e+2)(e+4) / (8π (2^(−e/2) + e))` (F. Giesen, "Derivation of the normalization factor
+//! for Blinn-Phong", 2009), which makes its directional albedo exactly 1 at normal incidence; it is
+//! lower at every other angle (checked by the tests here), so the lobe never reflects more than
+//! it receives. **Energy is conserved** by scaling `ρd` and `ρg` together so that
+//! `max over channels of (ρd + ρg) ≤ 1`, and the three lobe weights sum to one. Both smooth lobes
+//! are symmetric in the two directions (reciprocal); the mirror reflects about the geometric normal
+//! and the dielectric splits by the exact Fresnel reflectance, refracting by Snell's law (total
+//! internal reflection included; no absorption). Sampling picks a lobe with the probability of its
+//! weight, so a mirror of reflectance `r` and a surface of weight `1 − r` stay unbiased together.
+//!
+//! `ka` and the scene's ambient light belong to Whitted shading and are not used here.
+
+use crate::material::{highlight, Material};
+use crate::math::{fresnel_dielectric, orthonormal_basis, reflect, refract, Vec2, Vec3};
+
+use std::f32::consts::{FRAC_1_PI, PI};
+
+/// A sampled direction and what it carries.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BsdfSample {
+    /// The new direction, away from the surface.
+    pub dir: Vec3,
+    /// `f · |cos θ| / pdf` (what the path throughput is multiplied by).
+    pub weight: Vec3,
+    /// Solid-angle density of `dir` among all the BSDF's samples (for MIS); meaningless for a
+    /// delta lobe.
+    pub pdf: f32,
+    /// Whether the direction came from a mirror or dielectric lobe: no light sample could have
+    /// chosen it.
+    pub delta: bool,
+}
+
+/// The BSDF at one shading point, with directions in world space. `wo` is always the direction
+/// back along the incoming ray (away from the surface).
+#[derive(Debug, Clone, Copy)]
+pub struct Bsdf {
+    /// Shading frame: `n` faces the side the ray came from.
+    t: Vec3,
+    b: Vec3,
+    n: Vec3,
+    /// Geometric normal, facing the side the ray came from.
+    ng: Vec3,
+    diffuse: Vec3,
+    glossy: Vec3,
+    exponent: f32,
+    /// Giesen's normalisation of the glossy lobe.
+    norm: f32,
+    /// Colour of the mirror lobe.
+    tint: Vec3,
+    /// Lobe weights, summing to 1.
+    smooth: f32,
+    mirror: f32,
+    glass: f32,
+    /// Probability of sampling the glossy lobe within the smooth part.
+    p_glossy: f32,
+    /// `η_incident / η_transmitted` for light crossing from the ray's side.
+    eta: f32,
+}
+
+/// The weights `(mirror, glass, smooth)` of a material's lobes: see the module docs.
+pub fn lobe_weights(m: &Material) -> (f32, f32, f32) {
+    let mirror = m.kr.clamp(0.0, 1.0);
+    let glass = m.kt.clamp(0.0, 1.0 - mirror);
+    (mirror, glass, (1.0 - mirror - glass).max(0.0))
+}
+
+/// Giesen's normalisation of a Blinn-Phong lobe of exponent `e ≥ 0`.
+pub fn blinn_phong_norm(e: f32) -> f32 {
+    (e + 2.0) * (e + 4.0) / (8.0 * PI * ((-e / 2.0).exp2() + e))
+}
+
+impl Bsdf {
+    /// The BSDF of `material` with base colour `base`, for a ray that arrived from the side of
+    /// `ng` (the geometric normal, turned towards the ray's origin) at a point with shading
+    /// normal `ns` (turned the same way); `front` says whether that side is the outside.
+    pub fn new(material: &Material, base: Vec3, ns: Vec3, ng: Vec3, front: bool) -> Bsdf {
+        let (mirror, glass, smooth) = lobe_weights(material);
+        let mut diffuse = (material.kd * base).max(Vec3::ZERO);
+        let mut glossy = (material.ks * material.specular).max(Vec3::ZERO);
+        let peak = (diffuse + glossy).max_element();
+        if peak > 1.0 {
+            diffuse /= peak;
+            glossy /= peak;
+        }
+        let (sd, sg) = (diffuse.element_sum(), glossy.element_sum());
+        let exponent = material.exponent.max(0.0);
+        let n = if ns.dot(ng) > 0.0 { ns } else { ng };
+        let (t, b) = orthonormal_basis(n);
+        Bsdf {
+            t,
+            b,
+            n,
+            ng,
+            diffuse,
+            glossy,
+            exponent,
+            norm: blinn_phong_norm(exponent),
+            tint: material.mirror,
+            smooth,
+            mirror,
+            glass,
+            p_glossy: if sd + sg > 0.0 { sg / (sd + sg) } else { 0.0 },
+            eta: if front {
+                1.0 / material.eta
+            } else {
+                material.eta
+            },
+        }
+    }
+
+    /// Whether the smooth lobes reflect anything: only then is light sampling worth a shadow ray.
+    pub fn has_smooth(&self) -> bool {
+        self.smooth > 0.0 && (self.diffuse + self.glossy).max_element() > 0.0
+    }
+
+    /// `f(wo, wi)` of the smooth lobes (delta lobes are 0 in every given direction), weighted by
+    /// their share `s`.
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        if wi.dot(self.ng) <= 0.0 || wo.dot(self.ng) <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let (co, ci) = (self.n.dot(wo), self.n.dot(wi));
+        if co <= 0.0 || ci <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let mut f = self.diffuse * FRAC_1_PI;
+        if self.glossy != Vec3::ZERO {
+            let h = (wo + wi).normalize_or_zero();
+            f += self.glossy * (self.norm * highlight(self.n.dot(h).max(0.0), self.exponent));
+        }
+        self.smooth * f
+    }
+
+    /// The solid-angle density with which [`Bsdf::sample`] picks `wi` (its smooth lobes' share
+    /// included).
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if !self.has_smooth() || wi.dot(self.ng) <= 0.0 || wo.dot(self.ng) <= 0.0 {
+            return 0.0;
+        }
+        let ci = self.n.dot(wi);
+        if ci <= 0.0 || self.n.dot(wo) <= 0.0 {
+            return 0.0;
+        }
+        let mut p = (1.0 - self.p_glossy) * ci * FRAC_1_PI;
+        if self.p_glossy > 0.0 {
+            let h = (wo + wi).normalize_or_zero();
+            let oh = wo.dot(h);
+            if oh > 0.0 {
+                let ch = self.n.dot(h).max(0.0);
+                let pdf_h = (self.exponent + 1.0) / (2.0 * PI) * highlight(ch, self.exponent);
+                p += self.p_glossy * pdf_h / (4.0 * oh);
+            }
+        }
+        self.smooth * p
+    }
+
+    /// A direction for `wo` from `u_lobe` (which lobe, and inside the dielectric which way) and
+    /// `u` (where in the lobe); `None` where the path is absorbed.
+    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        if u_lobe < self.mirror {
+            return Some(BsdfSample {
+                dir: reflect(-wo, self.ng).normalize(),
+                weight: self.tint,
+                pdf: 0.0,
+                delta: true,
+            });
+        }
+        if u_lobe < self.mirror + self.glass {
+            let v = (u_lobe - self.mirror) / self.glass;
+            let f = fresnel_dielectric(wo.dot(self.ng), self.eta);
+            if v < f {
+                return Some(BsdfSample {
+                    dir: reflect(-wo, self.ng).normalize(),
+                    weight: Vec3::ONE,
+                    pdf: 0.0,
+                    delta: true,
+                });
+            }
+            // Radiance is squeezed into a narrower cone entering a denser medium: it scales by
+            // (η_i/η_t)² along the path (pbrt-v4 §9.5.2, non-symmetric scattering).
+            let dir = refract(-wo, self.ng, self.eta)?;
+            return Some(BsdfSample {
+                dir,
+                weight: Vec3::splat(self.eta * self.eta),
+                pdf: 0.0,
+                delta: true,
+            });
+        }
+        if !self.has_smooth() {
+            return None;
+        }
+        let v = ((u_lobe - self.mirror - self.glass) / self.smooth).clamp(0.0, 1.0);
+        let wi = if v < self.p_glossy {
+            let cos_h = u.x.powf(1.0 / (self.exponent + 1.0));
+            let sin_h = (1.0 - cos_h * cos_h).max(0.0).sqrt();
+            let phi = 2.0 * PI * u.y;
+            let h = self.world(Vec3::new(sin_h * phi.cos(), sin_h * phi.sin(), cos_h));
+            2.0 * wo.dot(h) * h - wo
+        } else {
+            // Cosine-weighted hemisphere (Malley's method).
+            let d = crate::sampling::concentric_disk(u);
+            let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+            self.world(Vec3::new(d.x, d.y, z))
+        };
+        let pdf = self.pdf(wo, wi);
+        if pdf <= 0.0 || !pdf.is_finite() {
+            return None;
+        }
+        let f = self.eval(wo, wi);
+        Some(BsdfSample {
+            dir: wi,
+            weight: f * (self.n.dot(wi) / pdf),
+            pdf,
+            delta: false,
+        })
+    }
+
+    /// The cosine factor of light arriving from `wi` (against the shading normal).
+    #[inline]
+    pub fn cos(&self, wi: Vec3) -> f32 {
+        self.n.dot(wi).max(0.0)
+    }
+
+    fn world(&self, v: Vec3) -> Vec3 {
+        v.x * self.t + v.y * self.b + v.z * self.n
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn material(kd: f32, ks: f32, e: f32) -> Material {
+        Material {
+            kd,
+            ks,
+            exponent: e,
+            diffuse: Vec3::ONE,
+            specular: Vec3::ONE,
+            ..Material::default()
+        }
+    }
+
+    fn dir(theta: f32, phi: f32) -> Vec3 {
+        Vec3::new(
+            theta.sin() * phi.cos(),
+            theta.sin() * phi.sin(),
+            theta.cos(),
+        )
+    }
+
+    /// `∫ f(wo, wi) cos θi dωi` by the midpoint rule over the hemisphere.
+    fn albedo(b: &Bsdf, wo: Vec3, n: usize) -> f64 {
+        let mut sum = 0.0f64;
+        let (dt, dp) = (0.5 * PI / n as f32, 2.0 * PI / (2 * n) as f32);
+        for i in 0..n {
+            let theta = (i as f32 + 0.5) * dt;
+            for j in 0..2 * n {
+                let wi = dir(theta, (j as f32 + 0.5) * dp);
+                let f = b.eval(wo, wi).x as f64;
+                sum += f * (theta.cos() * theta.sin() * dt * dp) as f64;
+            }
+        }
+        sum
+    }
+
+    /// The normalised glossy lobe reflects all it receives at normal incidence and less at any
+    /// other angle, for exponents from Lambertian (0) to mirror-like.
+    #[test]
+    fn glossy_albedo_is_one_at_normal_incidence_and_never_more() {
+        for e in [0.0f32, 1.0, 5.0, 20.0, 100.0] {
+            let b = Bsdf::new(&material(0.0, 1.0, e), Vec3::ONE, Vec3::Z, Vec3::Z, true);
+            let n = if e > 50.0 { 600 } else { 200 };
+            let at_normal = albedo(&b, Vec3::Z, n);
+            assert!((at_normal - 1.0).abs() < 0.01, "e {e}: {at_normal}");
+            for theta in [0.3f32, 0.7, 1.1, 1.4] {
+                let a = albedo(&b, dir(theta, 0.4), n);
+                assert!(a <= 1.0 + 2e-3, "e {e}, θ {theta}: {a}");
+            }
+        }
+    }
+
+    /// Diffuse plus glossy weights above one are scaled down together: the albedo stays ≤ 1.
+    #[test]
+    fn diffuse_and_glossy_together_never_exceed_one() {
+        let b = Bsdf::new(&material(0.9, 0.6, 10.0), Vec3::ONE, Vec3::Z, Vec3::Z, true);
+        for theta in [0.0f32, 0.5, 1.0, 1.4] {
+            let a = albedo(&b, dir(theta, 1.0), 200);
+            assert!(a <= 1.0 + 2e-3, "θ {theta}: {a}");
+        }
+        assert!(albedo(&b, Vec3::Z, 200) > 0.98);
+    }
+
+    /// Each smooth lobe is reciprocal: f(wo, wi) = f(wi, wo).
+    #[test]
+    fn smooth_lobes_are_reciprocal() {
+        let n = Vec3::new(0.2, 0.3, 0.93).normalize();
+        for m in [
+            material(0.7, 0.0, 1.0),
+            material(0.0, 0.8, 30.0),
+            material(0.5, 0.4, 7.0),
+        ] {
+            let b = Bsdf::new(&m, Vec3::new(0.9, 0.5, 0.2), n, n, true);
+            for i in 0..50 {
+                let a = dir(0.03 * i as f32, 0.7 * i as f32);
+                let c = dir(1.5 - 0.02 * i as f32, 2.0 + 0.3 * i as f32);
+                let (x, y) = (b.eval(a, c), b.eval(c, a));
+                assert!(
+                    (x - y).abs().max_element() <= 1e-6 * x.max_element().max(1e-3),
+                    "{x} vs {y}"
+                );
+            }
+        }
+    }
+
+    /// The sampler draws from the density `pdf` reports: the mean of `weight` is the albedo, and
+    /// `pdf` integrates to the share of samples that leave in a smooth lobe.
+    #[test]
+    fn samples_follow_the_reported_density() {
+        let m = Material {
+            kr: 0.25,
+            ..material(0.5, 0.4, 12.0)
+        };
+        let b = Bsdf::new(&m, Vec3::ONE, Vec3::Z, Vec3::Z, true);
+        let wo = dir(0.6, 0.0);
+        let k = 256u32;
+        let (mut mean, mut mirror, mut smooth) = (0.0f64, 0, 0);
+        for i in 0..k {
+            for j in 0..k {
+                let u = Vec2::new((i as f32 + 0.5) / k as f32, (j as f32 + 0.5) / k as f32);
+                let u_lobe = ((i * 7919 + j * 104729) % 65536) as f32 / 65536.0;
+                if let Some(s) = b.sample(wo, u_lobe, u) {
+                    if s.delta {
+                        mirror += 1;
+                    } else {
+                        assert!((s.pdf - b.pdf(wo, s.dir)).abs() <= 1e-4 * s.pdf);
+                        mean += s.weight.x as f64;
+                        smooth += 1;
+                    }
+                }
+            }
+        }
+        let n = (k * k) as f64;
+        let expected = albedo(&b, wo, 400);
+        assert!(
+            (mean / n - expected).abs() < 0.01,
+            "{} vs {expected}",
+            mean / n
+        );
+        assert!((mirror as f64 / n - 0.25).abs() < 0.01);
+        let mut integral = 0.0f64;
+        let steps = 300;
+        let (dt, dp) = (0.5 * PI / steps as f32, 2.0 * PI / (2 * steps) as f32);
+        for i in 0..steps {
+            let theta = (i as f32 + 0.5) * dt;
+            for j in 0..2 * steps {
+                let p = b.pdf(wo, dir(theta, (j as f32 + 0.5) * dp)) as f64;
+                integral += p * (theta.sin() * dt * dp) as f64;
+            }
+        }
+        // Glossy half vectors that would send the direction below the surface give no sample:
+        // the density covers just the samples taken.
+        assert!(integral < 0.75);
+        assert!(
+            (integral - smooth as f64 / n).abs() < 0.01,
+            "{integral} vs {}",
+            smooth as f64 / n
+        );
+    }
+
+    /// A glass lobe splits by Fresnel and refracts by Snell's law; inside, past the critical
+    /// angle, it only reflects.
+    #[test]
+    fn dielectric_reflects_by_fresnel_and_refracts_by_snell() {
+        let glass = Material {
+            kd: 0.0,
+            kt: 1.0,
+            eta: 1.5,
+            ..Material::default()
+        };
+        let b = Bsdf::new(&glass, Vec3::ONE, Vec3::Z, Vec3::Z, true);
+        let wo = dir(0.5, 0.0);
+        let f = fresnel_dielectric(0.5f32.cos(), 1.0 / 1.5);
+        let reflected = b.sample(wo, f * 0.5, Vec2::ZERO).unwrap();
+        assert!(reflected.delta && reflected.dir.z > 0.0);
+        let t = b.sample(wo, f + (1.0 - f) * 0.5, Vec2::ZERO).unwrap();
+        assert!(t.dir.z < 0.0);
+        let sin_t = (t.dir.x * t.dir.x + t.dir.y * t.dir.y).sqrt();
+        assert!((sin_t - 0.5f32.sin() / 1.5).abs() < 1e-5);
+        assert!((t.weight.x - 1.0 / 2.25).abs() < 1e-6);
+        let inside = Bsdf::new(&glass, Vec3::ONE, Vec3::Z, Vec3::Z, false);
+        for u in [0.0, 0.5, 0.999] {
+            let s = inside.sample(dir(1.0, 0.0), u, Vec2::ZERO).unwrap();
+            assert!(s.dir.z > 0.0, "total internal reflection");
+        }
+    }
+}
