@@ -209,7 +209,9 @@ def convert(path, meshdir, width=None, height=None):
     except ValueError as e:
         raise Unsupported("%s: not strict JSON (%s); comments and trailing commas are not mapped"
                           % (path, e))
-    check_keys(doc, {"rendermode", "nbounces", "pixelsample", "camera", "scene"}, "(root)")
+    # pixelsample, lightsample and a light's samples/method change only how our renderer samples,
+    # not the image it converges to: they are not mapped (Mitsuba's counts are set separately).
+    check_keys(doc, {"rendermode", "nbounces", "pixelsample", "lightsample", "camera", "scene"}, "(root)")
     mode = doc.get("rendermode")
     if not isinstance(mode, str) or mode.lower() != "pathtrace":
         raise Unsupported('rendermode: must be "pathtrace" (a CGR path-tracing file), found %r' % mode)
@@ -276,7 +278,8 @@ def convert(path, meshdir, width=None, height=None):
             out["light_%d" % i] = {"type": "point", "position": vec3(L["position"], where + ".position").tolist(),
                                    "intensity": rgb(math.pi * I)}
         elif t == "arealight":
-            check_keys(L, {"type", "v0", "v1", "v2", "v3", "normal", "intensity"}, where)
+            check_keys(L, {"type", "v0", "v1", "v2", "v3", "normal", "intensity", "samples", "method"},
+                       where)
             for k in ("v0", "v1", "v2", "v3", "normal"):
                 if k not in L:
                     raise Unsupported("%s: only the v0..v3 + normal form maps; missing '%s'" % (where, k))
@@ -520,6 +523,10 @@ def main():
     ap.add_argument("--sampler", default="independent",
                     help="Mitsuba sampler: independent, multijitter, stratified, ldsampler")
     ap.add_argument("--our-args", default="", help="extra raytracer flags, e.g. '--pixel-sampler random'")
+    ap.add_argument("--our-light-samples", type=int,
+                    help="render ours from a copy of the scene with this top-level lightsample (shadow "
+                         "rays per path vertex for every area light; the default is each light's own, "
+                         "4×4 for a jittered light without 'samples')")
     ap.add_argument("--no-ladder", action="store_true", help="converged images and bias only")
     ap.add_argument("--save", help="folder for PNG previews (sRGB) of the converged images")
     ap.add_argument("--mitsuba-only", action="store_true",
@@ -570,12 +577,23 @@ def main():
             if args.save:
                 save_png(ref, os.path.join(args.save, label + "_mitsuba.png"))
             continue
-        ours = Ours(args.raytracer, path, w, h, args.our_args.split())
+        our_scene, our_bytes = path, scene_bytes
+        if args.our_light_samples:
+            # A copy of the scene with its area lights' sample count set: ours only.
+            doc = json.loads(scene_bytes)
+            doc["lightsample"] = args.our_light_samples
+            our_bytes = json.dumps(doc, indent=1).encode()
+            our_scene = os.path.join(m.meshdir, os.path.basename(path))
+            with open(our_scene, "wb") as f:
+                f.write(our_bytes)
+            print("Our renderer: `\"lightsample\": %d` (shadow rays per vertex for each area light)\n"
+                  % args.our_light_samples)
+        ours = Ours(args.raytracer, our_scene, w, h, args.our_args.split())
         if not ours.path_tracer:
             log("warning: %s has no --integrator flag: its default renderer is compared, not a path tracer"
                 % args.raytracer)
         okey = hashlib.sha256(json.dumps([sha256_file(args.raytracer), ours.extra, w, h, args.ref_spp,
-                                          args.chunks]).encode() + scene_bytes).hexdigest()[:16]
+                                          args.chunks]).encode() + our_bytes).hexdigest()[:16]
         conv, conv_var = chunked(lambda spp, seed: ours.render(spp, seed, args.ref_threads),
                                  args.ref_spp, args.chunks,
                                  os.path.join(CACHE, "%s-ours-%s.npz" % (label, okey)), label + " ours ref")
