@@ -44,6 +44,7 @@ import hashlib
 import json
 import math
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -364,6 +365,7 @@ class Mitsuba:
         conv["dict"]["sensor"]["sampler"] = {"type": sampler, "sample_count": 1}
         self.mirror_x = conv["mirror_x"]
         self.width, self.height = conv["width"], conv["height"]
+        self.cpu_s = self.wall_s = 0.0   # totals over render(), to show contention
         t0 = time.perf_counter()
         self.scene = mi.load_dict(conv["dict"])
         mi.render(self.scene, spp=1, seed=0)   # warm-up: first-render set-up is not timed
@@ -371,9 +373,11 @@ class Mitsuba:
 
     def render(self, spp, seed):
         """(image as float64 h×w×3 in our orientation, seconds spent in mi.render)."""
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         img = mi.render(self.scene, spp=spp, seed=seed)
         dt = time.perf_counter() - t0
+        self.cpu_s += time.process_time() - c0
+        self.wall_s += dt
         a = np.array(img, dtype=np.float64)[:, :, :3]
         return (a[:, ::-1] if self.mirror_x else a), dt
 
@@ -387,17 +391,22 @@ class Ours:
         self.path_tracer = "--integrator" in helptext
         self.extra = (["--integrator", "path"] if self.path_tracer else []) + list(extra)
         self.tmp = tempfile.mkdtemp(prefix="raytracer-peer-")
+        self.cpu_s = self.wall_s = 0.0
 
     def render(self, spp, seed, threads=1):
         out = os.path.join(self.tmp, "o.exr")
         cmd = [self.binary, self.scene, out, "--spp", str(spp), "--seed", str(seed),
                "--threads", str(threads), "--width", str(self.width), "--height", str(self.height),
                "-q"] + self.extra
+        u0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
         r = subprocess.run(cmd, capture_output=True, text=True)
         dt = time.perf_counter() - t0
+        u1 = resource.getrusage(resource.RUSAGE_CHILDREN)
         if r.returncode != 0:
             sys.exit("raytracer failed (%s):\n%s" % (" ".join(cmd), r.stderr[-2000:]))
+        self.cpu_s += (u1.ru_utime - u0.ru_utime) + (u1.ru_stime - u0.ru_stime)
+        self.wall_s += dt
         return read_exr(out), dt
 
 
@@ -420,9 +429,9 @@ def read_exr(path):
         dr.set_thread_count(1)
 
 
-def chunked(render, spp, chunks, cache_file, label):
-    """Mean of `chunks` renders of spp/chunks each (seeds 1000, 1001, …) and the per-pixel
-    variance of that mean, cached as .npy."""
+def chunked(render, spp, chunks, cache_file, label, seed0=1000):
+    """Mean of `chunks` renders of spp/chunks each (seeds seed0, seed0 + 1, …) and the per-pixel
+    variance of that mean, cached as .npz."""
     if os.path.exists(cache_file):
         d = np.load(cache_file)
         log("%s: cached %s" % (label, os.path.relpath(cache_file, ROOT)))
@@ -431,7 +440,7 @@ def chunked(render, spp, chunks, cache_file, label):
     imgs = []
     for k in range(chunks):
         t0 = time.perf_counter()
-        img, _ = render(per, 1000 + k)
+        img, _ = render(per, seed0 + k)
         imgs.append(img)
         log("%s: chunk %d/%d, %d spp, %.1f s" % (label, k + 1, chunks, per, time.perf_counter() - t0))
     stack = np.stack(imgs)
@@ -513,6 +522,9 @@ def main():
     ap.add_argument("--raytracer", default=os.path.join(ROOT, "target", "release", "raytracer"))
     ap.add_argument("--ref-spp", type=int, default=4096, help="spp of both converged images")
     ap.add_argument("--chunks", type=int, default=4, help="renders the converged images are split into")
+    ap.add_argument("--ref-seed", type=int, default=1000,
+                    help="seed of the first chunk of the converged images (another value: an "
+                         "independent pair of references, to check the bias table's error bars)")
     ap.add_argument("--ref-threads", type=int, default=1,
                     help="threads for the (untimed, cached) converged images")
     ap.add_argument("--ladder", default="1,2,4,8,16,32,64,128,256")
@@ -565,12 +577,14 @@ def main():
                 save_png(img, os.path.join(args.save, label + "_mitsuba16.png"))
             continue
 
-        key = hashlib.sha256(json.dumps([CONVERTER_VERSION, mi.__version__, "independent", w, h,
-                                         args.ref_spp, args.chunks]).encode() + scene_bytes).hexdigest()[:16]
+        settings = [w, h, args.ref_spp, args.chunks] + ([args.ref_seed] if args.ref_seed != 1000 else [])
+        key = hashlib.sha256(json.dumps([CONVERTER_VERSION, mi.__version__, "independent"] + settings)
+                             .encode() + scene_bytes).hexdigest()[:16]
         if args.ref_threads != 1:
             dr.set_thread_count(args.ref_threads)
         ref, ref_var = chunked(m_ref.render, args.ref_spp, args.chunks,
-                               os.path.join(CACHE, "%s-mitsuba-%s.npz" % (label, key)), label + " Mitsuba ref")
+                               os.path.join(CACHE, "%s-mitsuba-%s.npz" % (label, key)), label + " Mitsuba ref",
+                               args.ref_seed)
         dr.set_thread_count(1)
         if args.mitsuba_only:
             log("%s: Mitsuba reference mean radiance %.4f, max %.4f" % (label, ref.mean(), ref.max()))
@@ -592,11 +606,12 @@ def main():
         if not ours.path_tracer:
             log("warning: %s has no --integrator flag: its default renderer is compared, not a path tracer"
                 % args.raytracer)
-        okey = hashlib.sha256(json.dumps([sha256_file(args.raytracer), ours.extra, w, h, args.ref_spp,
-                                          args.chunks]).encode() + our_bytes).hexdigest()[:16]
+        okey = hashlib.sha256(json.dumps([sha256_file(args.raytracer), ours.extra] + settings)
+                              .encode() + our_bytes).hexdigest()[:16]
         conv, conv_var = chunked(lambda spp, seed: ours.render(spp, seed, args.ref_threads),
                                  args.ref_spp, args.chunks,
-                                 os.path.join(CACHE, "%s-ours-%s.npz" % (label, okey)), label + " ours ref")
+                                 os.path.join(CACHE, "%s-ours-%s.npz" % (label, okey)), label + " ours ref",
+                                 args.ref_seed)
         if args.save:
             save_png(ref, os.path.join(args.save, label + "_mitsuba.png"))
             save_png(conv, os.path.join(args.save, label + "_ours.png"))
@@ -632,6 +647,8 @@ def main():
             continue
 
         results = {"mitsuba": {}, "ours": {}}
+        load0 = os.getloadavg()[0]
+        m.cpu_s = m.wall_s = ours.cpu_s = ours.wall_s = 0.0
         for spp in ladder:
             for run in range(args.runs):
                 seed = 1 + run
@@ -652,7 +669,9 @@ def main():
             print("| %d | %.4g | %.4g | %.2f |" % (spp, a, b, b / a))
         print()
 
-        print("Ladder: median time (s) and MSE, %d runs each, one thread\n" % args.runs)
+        print("Ladder: median time (s) and MSE, %d runs each, one thread (CPU time / wall time over "
+              "the ladder: Mitsuba %.2f, ours %.2f; load average %.1f before, %.1f after)\n"
+              % (args.runs, m.cpu_s / m.wall_s, ours.cpu_s / ours.wall_s, load0, os.getloadavg()[0]))
         print("| spp | Mitsuba s | Mitsuba MSE | ours s | ours MSE |\n|---|---|---|---|---|")
         for spp in ladder:
             (ta, ea), (tb, eb) = med["mitsuba"][spp], med["ours"][spp]
