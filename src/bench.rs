@@ -508,7 +508,8 @@ pub fn estimate_render(
         accel,
         options.integrator.unwrap_or(Kind::of_scene(scene)),
     );
-    let mut tracer = integrator.tracer(options.max_depth, options.trace, None);
+    let mut tracer =
+        integrator.tracer(options.max_depth, options.trace, options.pixel_method, None);
     let start = Instant::now();
     let mut traced = 0u64;
     // A stride coprime with the pixel count visits pixels spread over the whole image.

@@ -150,23 +150,59 @@ impl SampleKey {
         }
     }
 
-    /// Point `index` of the `count` points this camera sample owns in the pixel's 2D
-    /// Owen-scrambled Sobol set for `dimension`: the set is one sequence over all the pixel's
-    /// samples (camera sample `s` takes points `s·count .. s·count + count`), so the points of a
-    /// dimension are stratified across the whole pixel, not only within one camera sample. The
-    /// path tracer gives each bounce and each light its own dimensions ("padding", as in
-    /// pbrt-v4's `PaddedSobolSampler`).
+    /// Point `index` of the `count` points this camera sample owns in the pixel's padded 2D
+    /// set for `dimension`, placed with `method`: the set is one pattern over all the pixel's
+    /// `spp · count` points (camera sample `s` takes points `s·count .. s·count + count`), so a
+    /// dimension is stratified across the whole pixel, not only within one camera sample. The path
+    /// tracer gives each bounce and each light dimensions of their own ("padding", as pbrt-v4's
+    /// `PaddedSobolSampler` and `StratifiedSampler` do). `random`: independent points; `jittered`:
+    /// one point in each of the `spp · count` strata (a grid when that is a square, else N-rooks),
+    /// shuffled per pixel and dimension; `sobol`: Owen-scrambled Sobol points.
     #[inline]
-    pub fn sobol(&self, dimension: u64, index: u32, count: u32) -> Vec2 {
-        let [x, y, _, _] = self.sobol4(dimension, index, count);
-        Vec2::new(x, y)
+    pub fn padded(&self, method: Method, dimension: u64, index: u32, count: u32) -> Vec2 {
+        let count = count.max(1);
+        let i = self.sample.wrapping_mul(count).wrapping_add(index);
+        let key = hash(&[self.pixel_key, dimension, 0x9a7b_50b0]);
+        match method {
+            Method::Sobol => sobol2(i, (key >> 32) as u32),
+            Method::Random | Method::Jittered => {
+                let h = mix64(key ^ (i as u64).wrapping_add(0x9e37_79b9_7f4a_7c15));
+                let u = Vec2::new(to_unit(h), to_unit(mix64(h)));
+                if method == Method::Random {
+                    return u;
+                }
+                let total = self.spp.max(1).saturating_mul(count);
+                let shuffle = key as u32;
+                let stratum = permute(i % total, total, shuffle);
+                stratum_point(
+                    stratum,
+                    total,
+                    square_side(total),
+                    u,
+                    shuffle.rotate_left(16),
+                )
+            }
+        }
     }
 
-    /// [`SampleKey::sobol`] in four dimensions: the first two are the same point's.
+    /// [`SampleKey::padded`] in four dimensions: dimension sets `2·dimension` and
+    /// `2·dimension + 1`, each a padded 2D set; for Sobol, dimensions 0 to 3 of one Owen-scrambled
+    /// sequence, computed at once (the first two are the best stratified).
     #[inline]
-    pub fn sobol4(&self, dimension: u64, index: u32, count: u32) -> [f32; 4] {
-        let seed = (hash(&[self.pixel_key, dimension, 0x9a7b_50b0]) >> 32) as u32;
-        sobol4(self.sample.wrapping_mul(count).wrapping_add(index), seed)
+    pub fn padded4(&self, method: Method, dimension: u64, index: u32, count: u32) -> [f32; 4] {
+        match method {
+            Method::Sobol => {
+                let count = count.max(1);
+                let i = self.sample.wrapping_mul(count).wrapping_add(index);
+                let key = hash(&[self.pixel_key, dimension, 0x9a7b_50b0]);
+                sobol4(i, (key >> 32) as u32)
+            }
+            Method::Random | Method::Jittered => {
+                let a = self.padded(method, 2 * dimension + (1 << 40), index, count);
+                let b = self.padded(method, 2 * dimension + 1 + (1 << 40), index, count);
+                [a.x, a.y, b.x, b.y]
+            }
+        }
     }
 
     /// Sample `index` of `count` samples placed with `method` in the unit square, for a set of
@@ -354,6 +390,31 @@ pub fn uniform_sphere(u: Vec2) -> Vec3 {
 
 #[cfg(test)]
 mod tests {
+
+    /// A padded dimension is stratified over all of a pixel's points: with 4 camera samples of
+    /// 4 points each, jittered puts one point in each cell of a 4×4 grid, and Sobol's 16 points
+    /// form a (0,4,2)-net (one in each 1/4 × 1/4 cell too).
+    #[test]
+    fn padded_points_are_stratified_across_the_pixel() {
+        for method in [Method::Jittered, Method::Sobol] {
+            let mut cells = [0u32; 16];
+            for s in 0..4 {
+                let key = SampleKey::new(3, 5, s, 4, 9);
+                for j in 0..4 {
+                    let u = key.padded(method, 7, j, 4);
+                    assert!((0.0..1.0).contains(&u.x) && (0.0..1.0).contains(&u.y));
+                    cells[(u.x * 4.0) as usize + 4 * (u.y * 4.0) as usize] += 1;
+                }
+            }
+            assert_eq!(cells, [1; 16], "{method}");
+            // The 4D form's first two dimensions are the 2D point.
+            let key = SampleKey::new(3, 5, 2, 4, 9);
+            if method == Method::Sobol {
+                let [a, b, _, _] = key.padded4(method, 7, 1, 4);
+                assert_eq!(Vec2::new(a, b), key.padded(method, 7, 1, 4));
+            }
+        }
+    }
 
     /// The point set's hoisted form against the per-point computation it replaces.
     #[test]

@@ -1,10 +1,13 @@
-//! Sampler studies: image error against shadow-ray count and run time, for `raytracer study`.
+//! Sampler studies: image error against sample count and run time, for `raytracer study`.
 //!
-//! A study renders a scene once with many shadow rays (the reference), then with each sampler at a
-//! series of shadow-ray counts per area light, and records for each run its median render time,
-//! its MSE (whole image and an optional region, e.g. a penumbra) and its mean FLIP against the
-//! reference. Every run traces one ray through each pixel centre, so the only error left is that
-//! of the area-light estimate: the quantity the samplers differ in.
+//! A study renders a scene once with many samples (the reference), then with each sampler at a
+//! series of sample counts, and records for each run its median render time, its MSE (whole image
+//! and an optional region, e.g. a penumbra) and its mean FLIP against the reference. What is
+//! counted depends on the integrator ([`Kind`]):
+//! - Whitted: shadow rays per area light. Every run traces one ray through each pixel centre, so
+//!   the only error left is that of the area-light estimate: the quantity the samplers differ in.
+//! - Path tracing: samples per pixel, each a whole path, with every dimension of the path (pixel,
+//!   lens, bounces, light samples) placed by the sampler under study.
 //!
 //! The convergence rate is the slope of log MSE against log samples, fitted by least squares.
 //! For a smooth integrand independent samples give MSE ∝ n⁻¹; jittered (stratified) samples
@@ -16,7 +19,7 @@
 use image::ImageEncoder;
 
 use crate::film::Film;
-use crate::integrator::TraceOptions;
+use crate::integrator::{Kind, TraceOptions};
 use crate::metric::{mean_flip, mse, Region};
 use crate::render::{render, RenderError, RenderOptions, RenderOutput};
 use crate::sampling::Method;
@@ -49,8 +52,10 @@ pub struct Run {
 #[derive(Debug, Clone)]
 pub struct StudyOptions {
     pub samplers: Vec<Method>,
-    /// Largest shadow-ray count per area light.
+    /// Largest sample count (shadow rays per area light, or samples per pixel).
     pub max_samples: u32,
+    /// What renders the scene, and so what is counted.
+    pub integrator: Kind,
     /// Renders per run; the time is their median.
     pub runs: usize,
     /// Region for `mse_region`; the whole image without one.
@@ -63,6 +68,7 @@ impl Default for StudyOptions {
         StudyOptions {
             samplers: SAMPLERS.to_vec(),
             max_samples: 256,
+            integrator: Kind::Whitted,
             runs: 1,
             region: None,
             seed: 0,
@@ -79,14 +85,28 @@ pub fn sample_counts(method: Method, max: u32) -> Vec<u32> {
         .collect()
 }
 
-/// Renders `scene` with one ray per pixel centre and every area light sampled with `method` at
-/// `samples` shadow rays (point lights are unchanged).
+/// Renders `scene` with `samples` of `method`: for Whitted, one ray per pixel centre and every
+/// area light sampled at `samples` shadow rays (point lights are unchanged); for path tracing,
+/// `samples` paths per pixel.
 pub fn render_with(
     scene: &Scene,
+    integrator: Kind,
     method: Method,
     samples: u32,
     seed: u64,
 ) -> Result<RenderOutput, RenderError> {
+    if integrator == Kind::Path {
+        return render(
+            scene,
+            &RenderOptions {
+                spp: samples,
+                pixel_method: method,
+                seed,
+                integrator: Some(Kind::Path),
+                ..RenderOptions::default()
+            },
+        );
+    }
     render(
         scene,
         &RenderOptions {
@@ -103,11 +123,25 @@ pub fn render_with(
     )
 }
 
-/// The reference: jittered shadow rays on a `k×k` grid with `k² ≥ samples`, under a seed no run
-/// of a study uses.
-pub fn reference(scene: &Scene, samples: u32) -> Result<Film, RenderError> {
+/// The seed of references: one no run of a study uses.
+const REFERENCE_SEED: u64 = 0x5eed_f4ef;
+
+/// The reference: for Whitted, jittered shadow rays on a `k×k` grid with `k² ≥ samples`; for path
+/// tracing, `samples` Sobol paths per pixel; under a seed no run of a study uses.
+pub fn reference(scene: &Scene, integrator: Kind, samples: u32) -> Result<Film, RenderError> {
+    if integrator == Kind::Path {
+        return Ok(render_with(scene, integrator, Method::Sobol, samples, REFERENCE_SEED)?.film);
+    }
     let k = (samples.max(1) as f64).sqrt().ceil() as u32;
-    Ok(render_with(scene, Method::Jittered, k * k, 0x5eed_f4ef)?.film)
+    Ok(render_with(scene, integrator, Method::Jittered, k * k, REFERENCE_SEED)?.film)
+}
+
+/// What a study of `integrator` counts, for labels.
+pub fn counted(integrator: Kind) -> &'static str {
+    match integrator {
+        Kind::Whitted => "shadow rays per light",
+        Kind::Path => "samples per pixel",
+    }
 }
 
 /// The median of `v` (the mean of the middle two for an even length); 0 for none.
@@ -147,7 +181,7 @@ pub fn run_study(
         let mut times = Vec::with_capacity(options.runs.max(1));
         let mut film = None;
         for _ in 0..options.runs.max(1) {
-            let r = render_with(scene, sampler, samples, options.seed)?;
+            let r = render_with(scene, options.integrator, sampler, samples, options.seed)?;
             times.push(r.render_time.as_secs_f64());
             film = Some(r.film);
         }
@@ -281,7 +315,13 @@ fn colour(m: Method) -> plotters::style::RGBColor {
 
 /// Draws the log-log plot of the region MSE against samples (left) and against seconds (right),
 /// one line per sampler with its fitted slope in the legend, as a `width × height` RGB8 buffer.
-pub fn plot_rgb(runs: &[Run], title: &str, width: u32, height: u32) -> Result<Vec<u8>, String> {
+pub fn plot_rgb(
+    runs: &[Run],
+    title: &str,
+    counted: &str,
+    width: u32,
+    height: u32,
+) -> Result<Vec<u8>, String> {
     use plotters::prelude::*;
     register_font();
     let mut buf = vec![255u8; (width * height * 3) as usize];
@@ -316,9 +356,9 @@ pub fn plot_rgb(runs: &[Run], title: &str, width: u32, height: u32) -> Result<Ve
                 .y_label_area_size(70)
                 .caption(
                     if by_time {
-                        "MSE vs render time"
+                        "MSE vs render time".to_string()
                     } else {
-                        "MSE vs shadow rays"
+                        format!("MSE vs {counted}")
                     },
                     ("sans-serif", 16),
                 )
@@ -326,11 +366,7 @@ pub fn plot_rgb(runs: &[Run], title: &str, width: u32, height: u32) -> Result<Ve
                 .map_err(|e| e.to_string())?;
             chart
                 .configure_mesh()
-                .x_desc(if by_time {
-                    "seconds"
-                } else {
-                    "shadow rays per light"
-                })
+                .x_desc(if by_time { "seconds" } else { counted })
                 .y_desc("MSE")
                 .x_label_formatter(&|v| tick(*v))
                 .y_label_formatter(&|v| tick(*v))
@@ -413,9 +449,9 @@ fn bounds(v: &[f64]) -> (f64, f64) {
 }
 
 /// The plot of [`plot_rgb`] as PNG bytes.
-pub fn plot_png(runs: &[Run], title: &str) -> Result<Vec<u8>, String> {
+pub fn plot_png(runs: &[Run], title: &str, counted: &str) -> Result<Vec<u8>, String> {
     let (w, h) = (1200, 520);
-    let buf = plot_rgb(runs, title, w, h)?;
+    let buf = plot_rgb(runs, title, counted, w, h)?;
     let mut png = Vec::new();
     image::codecs::png::PngEncoder::new(&mut png)
         .write_image(&buf, w, h, image::ExtendedColorType::Rgb8)
@@ -546,7 +582,7 @@ mod tests {
                     .to_vec()
             })
             .collect();
-        let buf = plot_rgb(&runs, "test", 600, 300).unwrap();
+        let buf = plot_rgb(&runs, "test", "shadow rays per light", 600, 300).unwrap();
         // Something other than white was drawn, including each sampler's colour.
         let has = |c: plotters::style::RGBColor| buf.chunks_exact(3).any(|p| p == [c.0, c.1, c.2]);
         for m in SAMPLERS {

@@ -62,7 +62,12 @@ fn a_cancelled_camera_sample_stops_inside_its_shadow_rays_and_its_ray_tree() {
     let flag = AtomicBool::new(true);
     for kind in [Kind::Whitted, Kind::Path] {
         let integrator = Integrator::new(&scene, &accel, kind);
-        let mut tracer = integrator.tracer(u32::MAX, TraceOptions::default(), Some(&flag));
+        let mut tracer = integrator.tracer(
+            u32::MAX,
+            TraceOptions::default(),
+            raytracer::sampling::Method::Sobol,
+            Some(&flag),
+        );
         for (x, y) in [(4, 7), (4, 4), (1, 6)] {
             let key = SampleKey::new(x, y, 0, 1, 0);
             let ray = scene.camera.generate_ray(

@@ -26,8 +26,9 @@ use super::{exit_code, values};
 #[derive(Parser, Debug)]
 #[command(
     name = "raytracer study",
-    about = "Compares the area-light samplers (random, jittered, sobol): MSE and FLIP against a reference per shadow-ray count and per second of render time.",
-    after_help = "Every run traces one ray per pixel centre and sets every area light's sampler and shadow-ray count. \
+    about = "Compares the samplers (random, jittered, sobol): MSE and FLIP against a reference per sample count and per second of render time.",
+    after_help = "Whitted scenes: every run traces one ray per pixel centre and sets every area light's sampler and shadow-ray count. \
+                  Path-traced scenes (rendermode pathtrace, or --integrator path): every run takes that many paths per pixel, all their dimensions placed by the sampler. \
                   Outputs: --csv (sampler,samples,seconds,mse,mse_region,flip), --plot (log-log PNG), the reference as EXR, and on stdout the fitted slopes and equal-error times."
 )]
 struct StudyCli {
@@ -49,13 +50,15 @@ struct StudyCli {
     /// Renders per run; the reported time is their median.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=1000))]
     runs: u64,
-    /// Largest shadow-ray count per area light.
+    /// Largest sample count: shadow rays per area light (Whitted), or samples per pixel (path
+    /// tracing).
     #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=65536))]
     max_samples: u32,
     /// Reference image (EXR keeps it linear) instead of rendering one.
     #[arg(long)]
     reference: Option<PathBuf>,
-    /// Shadow rays per area light for the rendered reference (jittered, rounded up to a square).
+    /// Shadow rays per area light (jittered, rounded up to a square), or paths per pixel (Sobol),
+    /// for the rendered reference.
     #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..=65536))]
     reference_samples: u32,
     /// Target MSE for the equal-error times (default: what random reaches at 256 samples, or at
@@ -94,6 +97,9 @@ struct StudyCli {
     /// Treat every warning about the scene as an error: print them all and write nothing.
     #[arg(long)]
     strict: bool,
+    /// Integrator: whitted or path. Default: the scene's rendermode.
+    #[arg(long)]
+    integrator: Option<crate::integrator::Kind>,
 }
 
 /// Parses the subcommand's command line without running it.
@@ -149,6 +155,10 @@ fn load_scene(cli: &StudyCli) -> Result<crate::scene::Scene, String> {
 
 fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
     let scene = load_scene(cli)?;
+    let integrator = cli
+        .integrator
+        .unwrap_or(crate::integrator::Kind::of_scene(&scene));
+    let counted = study::counted(integrator);
     let (w, h) = (scene.camera.width, scene.camera.height);
     if let Some(r) = cli.region {
         if !r.fits(w, h) {
@@ -207,9 +217,9 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             } else {
                 cli.reference_samples
             };
-            eprintln!("study: reference, jittered, {n} shadow rays per area light, {w}×{h} …");
+            eprintln!("study: reference, {n} {counted}, {w}×{h} …");
             let t = Instant::now();
-            let f = study::reference(&scene, n).map_err(|e| e.to_string())?;
+            let f = study::reference(&scene, integrator, n).map_err(|e| e.to_string())?;
             eprintln!("study: reference took {:.2} s", t.elapsed().as_secs_f64());
             let bytes = encode_image(&reference_out, &f, ToneMap::Linear, 1.0)
                 .map_err(|e| e.to_string())?;
@@ -229,13 +239,14 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         } else {
             cli.max_samples
         },
+        integrator,
         runs: cli.runs as usize,
         region: cli.region,
         seed: cli.seed,
     };
     let runs = study::run_study(&scene, &reference, &options, |i, n, r| {
         eprintln!(
-            "study: [{i}/{n}] {:<8} {:>5} rays  {:.4} s  MSE {:.3e}  region {:.3e}  FLIP {:.4}",
+            "study: [{i}/{n}] {:<8} {:>5} {counted}  {:.4} s  MSE {:.3e}  region {:.3e}  FLIP {:.4}",
             r.sampler.to_string(),
             r.samples,
             r.seconds,
@@ -250,7 +261,7 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         .find(|r| !(r.mse.is_finite() && r.mse_region.is_finite() && r.flip.is_finite()))
     {
         return Err(format!(
-            "the {} run with {} shadow rays has a non-finite error (MSE {}, FLIP {}): no results written",
+            "the {} run with {} {counted} has a non-finite error (MSE {}, FLIP {}): no results written",
             r.sampler, r.samples, r.mse, r.flip
         ));
     }
@@ -266,13 +277,13 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         Some(r) => format!("region {},{},{},{}", r.x, r.y, r.width, r.height),
         None => "whole image".into(),
     };
-    let png = study::plot_png(&runs, &format!("{name}: {what}, {w}×{h}"))?;
+    let png = study::plot_png(&runs, &format!("{name}: {what}, {w}×{h}"), counted)?;
     interrupt
         .commit(plot_out, &png)
         .map_err(|e| e.to_string())?;
 
     outln!(
-        "MSE over the {what}; slopes fitted over runs with ≥ {} shadow rays",
+        "MSE over the {what}; slopes fitted over runs with ≥ {} {counted}",
         study::FIT_MIN_SAMPLES
     );
     outln!("{:<10} {:>8}", "sampler", "slope");

@@ -103,12 +103,14 @@ impl<'a> Integrator<'a> {
         }
     }
 
-    /// A tracer for one worker: `max_depth` caps the scene's `nbounces`, `cancel` (when set from
-    /// any thread) stops it within a sample.
+    /// A tracer for one worker: `max_depth` caps the scene's `nbounces`, `method` places the path
+    /// tracer's samples (the render's pixel sampler), `cancel` (when set from any thread) stops it
+    /// within a sample.
     pub fn tracer(
         &'a self,
         max_depth: u32,
         options: TraceOptions,
+        method: Method,
         cancel: Option<&'a AtomicBool>,
     ) -> Tracer<'a> {
         match &self.emitters {
@@ -119,7 +121,7 @@ impl<'a> Integrator<'a> {
                 Tracer::Whitted(w)
             }
             Some(e) => Tracer::Path(path::PathTracer::new(
-                self.scene, self.accel, e, max_depth, options, cancel,
+                self.scene, self.accel, e, max_depth, options, method, cancel,
             )),
         }
     }

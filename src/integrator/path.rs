@@ -17,9 +17,10 @@
 //! roulette, unbiased. Shadow rays are blocked by every scene shape (glass included: caustics come
 //! only from scattered rays) and by the lights' own surfaces other than the target light's.
 //!
-//! Every random number comes from [`SampleKey::sobol4`]: vertex `d` owns the 4D set
-//! `2 + d·(1 + L)` (BSDF direction, lobe choice, roulette) and the next `L`, one per light for its
-//! samples (`L` lights); sets 0 and 1 are the film and lens positions. So a pixel's
+//! Every random number comes from [`SampleKey::padded4`] and [`SampleKey::padded`], placed with
+//! the render's pixel sampler (Owen-scrambled Sobol by default): vertex `d` owns the dimension
+//! `2 + d·(1 + L)` (a 4D point: BSDF direction, lobe choice, roulette) and the next `L`, one per
+//! light for its samples (`L` lights); 0 and 1 are the film and lens positions. So a pixel's
 //! value depends only on (pixel, sample, dimension, seed).
 
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -28,7 +29,7 @@ use crate::accel::Accel;
 use crate::light::Light;
 use crate::math::{Vec2, Vec3};
 use crate::ray::{Hit, Ray, SpawnPoints};
-use crate::sampling::SampleKey;
+use crate::sampling::{Method, SampleKey};
 use crate::scene::Scene;
 
 use super::bsdf::Bsdf;
@@ -54,6 +55,8 @@ pub struct PathTracer<'a> {
     /// Cap on the path's vertices on top of the scene's `nbounces`.
     max_depth: u32,
     options: TraceOptions,
+    /// How the path's samples are placed (the render's pixel sampler).
+    method: Method,
     pub counts: RayCounts,
     cancel: Option<&'a AtomicBool>,
 }
@@ -75,6 +78,7 @@ impl<'a> PathTracer<'a> {
         emitters: &'a Emitters,
         max_depth: u32,
         options: TraceOptions,
+        method: Method,
         cancel: Option<&'a AtomicBool>,
     ) -> PathTracer<'a> {
         PathTracer {
@@ -83,6 +87,7 @@ impl<'a> PathTracer<'a> {
             emitters,
             max_depth,
             options,
+            method,
             counts: RayCounts::default(),
             cancel,
         }
@@ -153,7 +158,7 @@ impl<'a> PathTracer<'a> {
             }
             // One 4D point: the direction in its first two (best stratified) dimensions, the lobe
             // and the roulette in the other two.
-            let [u0, u1, u_lobe, u_roulette] = key.sobol4(dims, 0, 1);
+            let [u0, u1, u_lobe, u_roulette] = key.padded4(self.method, dims, 0, 1);
             let Some(s) = bsdf.sample(wo, u_lobe, Vec2::new(u0, u1)) else {
                 break;
             };
@@ -229,7 +234,8 @@ impl<'a> PathTracer<'a> {
             let count = self.light_samples(light);
             let share = 1.0 / count as f32;
             for j in 0..count {
-                let s = light.sample(hit.point, key.sobol(first_dim + li as u64, j, count));
+                let u = key.padded(self.method, first_dim + li as u64, j, count);
+                let s = light.sample(hit.point, u);
                 let to = s.position - hit.point;
                 let d2 = to.length_squared();
                 let wi = to / d2.sqrt();

@@ -451,6 +451,7 @@ impl Work<'_> {
         self.integrator.tracer(
             self.options.max_depth,
             self.options.trace,
+            self.options.pixel_method,
             self.options.cancel.as_deref(),
         )
     }
