@@ -24,8 +24,8 @@ of the CGR scene format that both renderers define the same way and refuses anyt
 
 Per scene it then measures:
 
-1. references: Mitsuba at --ref-spp, and ours at --ref-spp, each as --chunks renders with different
-   seeds (their spread gives the noise of the means). Both are cached under target/mitsuba-cache/,
+1. references: Mitsuba (independent sampler) and ours at --ref-spp each, as --chunks renders with
+   different seeds (their spread gives the noise of the means). Both are cached under target/mitsuba-cache/,
    keyed by the scene's bytes and the settings (ours also by the binary's bytes).
 2. bias: mean radiance (RGB average) of each cell of a --grid × --grid split of the image, and of
    the whole image, ours vs Mitsuba, relative difference in % with its standard error.
@@ -36,7 +36,8 @@ Per scene it then measures:
    (start-up, scene load, BVH, render, EXR write). The time each needs to reach the MSE that Mitsuba
    has at --target-spp is interpolated log-log on the medians; the ratio is ours/Mitsuba.
 
-Prints Markdown tables. A benchmark, never a test: not run by CI.
+Prints Markdown tables; docs/path-tracing-vs-mitsuba.md has the measured ones. A benchmark, never
+a test: not run by CI.
 """
 
 import argparse
