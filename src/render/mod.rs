@@ -466,7 +466,12 @@ impl Work<'_> {
         } else {
             key.pixel_pattern(options.pixel_method, 0)
         };
-        let lens = key.pixel_pattern(options.pixel_method, 1);
+        // A pinhole camera has no lens to sample.
+        let lens = if self.scene.camera.lens.is_some() {
+            key.pixel_pattern(options.pixel_method, 1)
+        } else {
+            Vec2::splat(0.5)
+        };
         let ray = self.scene.camera.generate_ray(x, y, film, lens);
         tracer.trace_camera(&ray, &key)
     }
