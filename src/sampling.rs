@@ -266,19 +266,12 @@ impl PointSet {
 /// (still well spread, though the set is then no longer one net).
 #[inline]
 pub fn sobol2(index: u32, seed: u32) -> Vec2 {
-    const LEN: u32 = 1 << 16;
-    let (block, i) = (index / LEN, index % LEN);
-    let seed = if block == 0 {
-        seed
-    } else {
-        (hash(&[seed as u64, block as u64]) >> 32) as u32
-    };
-    let [x, y, _, _] = sobol_burley::sample_4d(i, 0, seed);
+    let [x, y, _, _] = sobol4(index, seed);
     Vec2::new(x, y)
 }
 
 /// Point `index` of the 4D Owen-scrambled Sobol set keyed by `seed`: dimensions 0 to 3 of the
-/// sequence, the first two exactly those of [`sobol2`] (the crate computes the four at once, in
+/// sequence, continued past 2^16 points as [`sobol2`] is (the crate computes the four at once, in
 /// SIMD lanes where the CPU has them, with the same integer arithmetic as one at a time).
 #[inline]
 pub fn sobol4(index: u32, seed: u32) -> [f32; 4] {
