@@ -503,11 +503,7 @@ pub fn estimate_render(
     if pixels == 0 {
         return Duration::ZERO;
     }
-    let integrator = Integrator::new(
-        scene,
-        accel,
-        options.integrator.unwrap_or(Kind::of_scene(scene)),
-    );
+    let integrator = Integrator::new(scene, accel, Kind::chosen(options.integrator, scene));
     let mut tracer =
         integrator.tracer(options.max_depth, options.trace, options.pixel_method, None);
     let start = Instant::now();

@@ -102,9 +102,7 @@ impl ImageFlags {
             (None, Some(_)) => Some(TIME_LIMIT_SPP),
             (spp, _) => spp,
         };
-        let integrator = self
-            .integrator
-            .unwrap_or(crate::integrator::Kind::of_scene(scene));
+        let integrator = crate::integrator::Kind::chosen(self.integrator, scene);
         // The path tracer's own dimensions are Sobol; its pixel and lens samples follow.
         let default_method = match (adaptive, integrator) {
             (Some(_), _) | (None, crate::integrator::Kind::Path) => Method::Sobol,

@@ -155,9 +155,7 @@ fn load_scene(cli: &StudyCli) -> Result<crate::scene::Scene, String> {
 
 fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
     let scene = load_scene(cli)?;
-    let integrator = cli
-        .integrator
-        .unwrap_or(crate::integrator::Kind::of_scene(&scene));
+    let integrator = crate::integrator::Kind::chosen(cli.integrator, &scene);
     let counted = study::counted(integrator);
     let (w, h) = (scene.camera.width, scene.camera.height);
     if let Some(r) = cli.region {

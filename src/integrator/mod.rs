@@ -45,6 +45,11 @@ impl Kind {
         }
     }
 
+    /// `choice` (a command line's or options' `--integrator`), else what `scene` asks for.
+    pub fn chosen(choice: Option<Kind>, scene: &Scene) -> Kind {
+        choice.unwrap_or_else(|| Kind::of_scene(scene))
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             Kind::Whitted => "whitted",
@@ -87,19 +92,6 @@ impl<'a> Integrator<'a> {
             scene,
             accel,
             emitters: (kind == Kind::Path).then(|| emitters::Emitters::new(scene)),
-        }
-    }
-
-    /// The integrator `scene` asks for ([`Kind::of_scene`]).
-    pub fn for_scene(scene: &'a Scene, accel: &'a Accel) -> Integrator<'a> {
-        Integrator::new(scene, accel, Kind::of_scene(scene))
-    }
-
-    pub fn kind(&self) -> Kind {
-        if self.emitters.is_some() {
-            Kind::Path
-        } else {
-            Kind::Whitted
         }
     }
 

@@ -132,9 +132,7 @@ pub fn fingerprint(scene: &Scene, options: &RenderOptions) -> std::io::Result<u6
         options.max_depth,
         options.trace,
         options.adaptive,
-        options
-            .integrator
-            .unwrap_or(crate::integrator::Kind::of_scene(scene))
+        crate::integrator::Kind::chosen(options.integrator, scene)
     );
     h.field(settings.as_bytes());
     Ok(h.0)

@@ -298,11 +298,7 @@ impl Plan {
             spp,
             buffers,
         } = self;
-        let integrator = Integrator::new(
-            scene,
-            accel,
-            options.integrator.unwrap_or(Kind::of_scene(scene)),
-        );
+        let integrator = Integrator::new(scene, accel, Kind::chosen(options.integrator, scene));
         let work = Work {
             scene,
             integrator: &integrator,
