@@ -251,17 +251,11 @@ impl Light {
         }
     }
 
-    /// The sampling method of an area light (points use none).
     /// The solid-angle density at `from` with which [`Light::sample`] (for uniform `u`) picks
     /// `point` of the light's surface, whose unit normal there is `normal`: what a path tracer
     /// weighs a direction against when its BSDF sample hits the light. 0 for a point light.
     pub fn pdf(&self, from: Vec3, point: Vec3, normal: Vec3) -> f32 {
-        let d = point - from;
-        let d2 = d.length_squared();
-        let area_pdf = |area: f32| {
-            let cos_l = normal.dot(d).abs() / d2.sqrt();
-            d2 / (area * cos_l)
-        };
+        let area_pdf = |area: f32| area_to_solid_angle(point - from, normal, area);
         match self {
             Light::Point { .. } => 0.0,
             Light::Quad { area, .. } => area_pdf(*area),
@@ -274,14 +268,13 @@ impl Light {
                 if dc2 <= r2 {
                     area_pdf(4.0 * std::f32::consts::PI * r2)
                 } else {
-                    let sin2_max = r2 / dc2;
-                    let one_minus_cos_max = sin2_max / (1.0 + (1.0 - sin2_max).max(0.0).sqrt());
-                    1.0 / (2.0 * std::f32::consts::PI * one_minus_cos_max)
+                    1.0 / (2.0 * std::f32::consts::PI * cone_one_minus_cos(r2, dc2))
                 }
             }
         }
     }
 
+    /// The sampling method of an area light (points use none).
     pub fn method(&self) -> Method {
         match self {
             Light::Point { .. } => Method::Random,
@@ -363,15 +356,32 @@ impl Light {
 #[inline(always)]
 fn flat_sample(from: Vec3, position: Vec3, normal: Vec3, area: f32) -> LightSample {
     let d = position - from;
-    let d2 = d.length_squared();
-    let cos_l = normal.dot(d).abs() / d2.sqrt();
     LightSample {
         position,
         normal,
         weight: 1.0,
-        pdf: d2 / (area * cos_l),
-        falloff_d2: d2,
+        pdf: area_to_solid_angle(d, normal, area),
+        falloff_d2: d.length_squared(),
     }
+}
+
+/// The solid-angle density, seen along `d` (shading point to sample), of a point sampled
+/// uniformly by area on a surface of total `area` whose unit normal there is `normal`:
+/// `|d|² / (area · |cos θ_l|)`. Infinite where the surface is seen edge-on.
+#[inline(always)]
+fn area_to_solid_angle(d: Vec3, normal: Vec3, area: f32) -> f32 {
+    let d2 = d.length_squared();
+    let cos_l = normal.dot(d).abs() / d2.sqrt();
+    d2 / (area * cos_l)
+}
+
+/// `1 − cos θ_max` of the cone a ball of squared radius `r2` fills seen from squared distance
+/// `dc2 > r2` to its centre (sin θ_max = r / d_c), computed without cancellation so that a
+/// small, distant ball (cos θ_max close to 1) keeps its precision.
+#[inline(always)]
+fn cone_one_minus_cos(r2: f32, dc2: f32) -> f32 {
+    let sin2_max = r2 / dc2;
+    sin2_max / (1.0 + (1.0 - sin2_max).max(0.0).sqrt())
 }
 
 /// A sample of the ball `(center, radius)` seen from `from` (see the module docs).
@@ -399,8 +409,7 @@ fn sample_sphere(center: Vec3, radius: f32, from: Vec3, u: Vec2) -> LightSample 
     // θ is the angle at `from` between a direction and the one to the centre; the sphere fills
     // θ ≤ θ_max with sin θ_max = r / d_c. `1 − cos θ` is kept as the sampled quantity itself, so
     // that a small, distant sphere (cos θ_max close to 1) loses nothing to cancellation.
-    let sin2_max = r2 / dc2;
-    let one_minus_cos_max = sin2_max / (1.0 + (1.0 - sin2_max).max(0.0).sqrt());
+    let one_minus_cos_max = cone_one_minus_cos(r2, dc2);
     let a = u.x * one_minus_cos_max; // 1 − cos θ, uniform in [0, 1 − cos θ_max]
     let cos_t = 1.0 - a;
     let sin2_t = a * (2.0 - a);
@@ -560,8 +569,6 @@ mod tests {
         sum / (k * k) as f64
     }
 
-    /// Under any fall-off, a sphere light above the horizon lights a point as the point light at
-    /// its centre with that fall-off: here none at all (a CGR light) and OpenGL attenuation.
     /// `Light::pdf` gives back the density `Light::sample` reports for the point it chose.
     #[test]
     fn pdf_of_a_sampled_point_is_the_samples_pdf() {
@@ -599,6 +606,8 @@ mod tests {
         }
     }
 
+    /// Under any fall-off, a sphere light above the horizon lights a point as the point light at
+    /// its centre with that fall-off: here none at all (a CGR light) and OpenGL attenuation.
     #[test]
     fn a_sphere_light_follows_its_lights_falloff_from_its_centre() {
         let l = ball(Vec3::ZERO, 0.5);
