@@ -64,6 +64,13 @@ pub(super) fn flat_corners(kind: &str) -> Option<usize> {
     }
 }
 
+/// A shape's `type`, lower case (empty when it has none or it is not a string).
+fn shape_kind(s: &Node) -> String {
+    s.get("type")
+        .and_then(|n| n.str().ok().map(str::to_ascii_lowercase))
+        .unwrap_or_default()
+}
+
 /// A light waiting for the shape its `shapeid` names.
 struct Wanted {
     /// Index of its placeholder in the loader's lights.
@@ -130,10 +137,7 @@ impl Emitters {
         let Some(id) = s.get("id").and_then(|n| n.str().ok().map(str::to_string)) else {
             return;
         };
-        let kind = s
-            .get("type")
-            .and_then(|n| n.str().ok().map(str::to_ascii_lowercase))
-            .unwrap_or_default();
+        let kind = shape_kind(s);
         self.shapes.push(Named {
             id,
             kind,
@@ -148,10 +152,7 @@ impl Emitters {
     /// conventions of `integrator::emitters` give back `radiance`; Whitted shading sees a light
     /// of that intensity and fall-off, and the shape's own emission).
     pub(super) fn glowing(&mut self, s: &Node, primitives: Range<usize>, radiance: Vec3) {
-        let kind = s
-            .get("type")
-            .and_then(|n| n.str().ok().map(str::to_ascii_lowercase))
-            .unwrap_or_default();
+        let kind = shape_kind(s);
         self.glowing.push(Glowing {
             kind,
             at: s.location(),

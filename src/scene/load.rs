@@ -1686,21 +1686,17 @@ impl<'o> Loader<'o> {
             } else if refractive == Some(true) {
                 m.kt = 1.0;
             }
-            if let Some(e) = n.get_any(&[
+            let eta_node = n.get_any(&[
                 "eta",
                 "refractiveindex",
                 "refractiveIndex",
                 "refractive_index",
                 "ior",
-            ]) {
-                let v = e.f32()?;
-                if v <= 0.0 && m.kt > 0.0 {
-                    return Err(e.error(format!("the index of refraction must be > 0, found {v}")));
-                }
-                m.eta = v;
-            } else {
-                m.eta = DEFAULT_ETA;
-            }
+            ]);
+            m.eta = match &eta_node {
+                Some(e) => e.f32()?,
+                None => DEFAULT_ETA,
+            };
             for (name, v) in [
                 ("ka", m.ka),
                 ("kd", m.kd),
@@ -1715,6 +1711,13 @@ impl<'o> Loader<'o> {
             }
             if own_material {
                 self.material_kind(n, &mut m)?;
+            }
+            // Checked once the material's `type` has said whether it transmits.
+            if let Some(e) = eta_node.filter(|_| m.eta <= 0.0 && m.kt > 0.0) {
+                return Err(e.error(format!(
+                    "the index of refraction must be > 0, found {}",
+                    m.eta
+                )));
             }
         }
         node.iter()
@@ -1839,13 +1842,6 @@ impl<'o> Loader<'o> {
                 m.kd = 0.0;
                 m.ks = 0.0;
                 m.kt = 1.0;
-                if m.eta <= 0.0 {
-                    let at = n.get_any(&["ior", "eta", "refractiveindex"]).unwrap_or(t);
-                    return Err(at.error(format!(
-                        "the index of refraction must be > 0, found {}",
-                        m.eta
-                    )));
-                }
             }
             "emissive" | "emitter" | "light" | "emission" => {
                 let colour = match n.get_any(&["colour", "color", "emission", "emittance"]) {
