@@ -144,6 +144,23 @@ pub struct SpawnPoints {
 }
 
 impl SpawnPoints {
+    /// The origin of a ray leaving in direction `w`: `offset_ray_origin` depends on the direction
+    /// only through the sign of `w · normal`.
+    #[inline]
+    fn origin(&self, w: Vec3) -> Vec3 {
+        if w.dot(self.normal) < 0.0 {
+            self.below
+        } else {
+            self.above
+        }
+    }
+
+    /// [`Hit::spawn`] from the hit these points were made for.
+    #[inline]
+    pub fn ray(&self, w: Vec3) -> Ray {
+        Ray::new(self.origin(w), w)
+    }
+
     /// How far the origins are from the hit point.
     #[inline]
     pub fn offset(&self) -> f32 {
@@ -155,13 +172,7 @@ impl SpawnPoints {
     /// [`Hit::spawn_to`] from the hit these points were made for.
     #[inline]
     pub fn ray_to(&self, target: Vec3) -> (Ray, f32) {
-        let w = (target - self.point).normalize_or_zero();
-        // `offset_ray_origin` depends on the direction only through this sign.
-        let origin = if w.dot(self.normal) < 0.0 {
-            self.below
-        } else {
-            self.above
-        };
+        let origin = self.origin((target - self.point).normalize_or_zero());
         let to = target - origin;
         let dist = to.length();
         (Ray::new(origin, to / dist.max(f32::MIN_POSITIVE)), dist)
@@ -197,7 +208,7 @@ mod tests {
     }
 
     #[test]
-    fn spawn_points_give_the_rays_of_spawn_to() {
+    fn spawn_points_give_the_rays_of_spawn_and_spawn_to() {
         let mut rng = 0x1234_5678u32;
         let mut next = || {
             rng ^= rng << 13;
@@ -227,6 +238,8 @@ mod tests {
                 hit.point,
             ] {
                 assert_eq!(points.ray_to(target), hit.spawn_to(target));
+                let w = (target - hit.point).normalize_or(normal);
+                assert_eq!(points.ray(w), hit.spawn(w));
             }
         }
     }

@@ -69,7 +69,12 @@ pub fn mix64(mut z: u64) -> u64 {
 /// Hashes a sequence of words into one.
 #[inline]
 pub fn hash(words: &[u64]) -> u64 {
-    let mut h = 0x9e37_79b9_7f4a_7c15u64;
+    hash_on(0x9e37_79b9_7f4a_7c15, words)
+}
+
+/// [`hash`] continued from state `h`: `hash_on(hash(a), b)` is `hash` of `a` then `b`.
+#[inline]
+fn hash_on(mut h: u64, words: &[u64]) -> u64 {
     for &w in words {
         h = mix64(h ^ w.wrapping_add(0x9e37_79b9_7f4a_7c15));
     }
@@ -92,29 +97,38 @@ pub struct SampleKey {
     pub sample: u32,
     /// Samples per pixel.
     pub spp: u32,
-    pixel_key: u64,
+    /// The hash state after the pixel's key `hash(&[x, y, seed])`: every per-pixel hash continues
+    /// from it.
+    pixel_state: u64,
 }
 
 impl SampleKey {
     /// The source for camera sample `sample` of `spp` at pixel `(x, y)` under `seed`.
     pub fn new(x: u32, y: u32, sample: u32, spp: u32, seed: u64) -> SampleKey {
-        let pixel_key = hash(&[x as u64, y as u64, seed]);
+        let pixel_state = hash(&[hash(&[x as u64, y as u64, seed])]);
         SampleKey {
-            key: hash(&[pixel_key, sample as u64]),
+            key: hash_on(pixel_state, &[sample as u64]),
             sample,
             spp,
-            pixel_key,
+            pixel_state,
         }
     }
 
     /// A derived source for a sub-stream (e.g. a bounce or a light), independent of this one.
     #[inline]
     pub fn stream(&self, id: u64) -> SampleKey {
+        let pixel_key = self.pixel_hash(&[id]);
         SampleKey {
             key: hash(&[self.key, id]),
-            pixel_key: hash(&[self.pixel_key, id]),
+            pixel_state: hash(&[pixel_key]),
             ..*self
         }
+    }
+
+    /// `hash` of the pixel key followed by `words`.
+    #[inline]
+    fn pixel_hash(&self, words: &[u64]) -> u64 {
+        hash_on(self.pixel_state, words)
     }
 
     /// A uniform value in `[0, 1)` for `dimension`.
@@ -133,19 +147,19 @@ impl SampleKey {
     /// anti-aliasing, lens positions), placed with `method`. Patterns for different `dimension`s are
     /// decorrelated by a per-pixel shuffle of the strata.
     pub fn pixel_pattern(&self, method: Method, dimension: u64) -> Vec2 {
-        let h = hash(&[self.pixel_key, dimension, self.sample as u64]);
+        let h = self.pixel_hash(&[dimension, self.sample as u64]);
         let u = Vec2::new(to_unit(h), to_unit(mix64(h)));
         match method {
             Method::Random => u,
             Method::Jittered => {
-                let key = (hash(&[self.pixel_key, dimension]) & 0xffff_ffff) as u32;
+                let key = (self.pixel_hash(&[dimension]) & 0xffff_ffff) as u32;
                 let stratum = permute(self.sample, self.spp, key);
                 let spp = self.spp.max(1);
                 stratum_point(stratum, spp, square_side(spp), u, key.rotate_left(16))
             }
             Method::Sobol => sobol2(
                 self.sample,
-                (hash(&[self.pixel_key, dimension, 0x50b0]) >> 32) as u32,
+                (self.pixel_hash(&[dimension, 0x50b0]) >> 32) as u32,
             ),
         }
     }
@@ -162,7 +176,7 @@ impl SampleKey {
     pub fn padded(&self, method: Method, dimension: u64, index: u32, count: u32) -> Vec2 {
         let count = count.max(1);
         let i = self.sample.wrapping_mul(count).wrapping_add(index);
-        let key = hash(&[self.pixel_key, dimension, 0x9a7b_50b0]);
+        let key = self.pixel_hash(&[dimension, 0x9a7b_50b0]);
         match method {
             Method::Sobol => sobol2(i, (key >> 32) as u32),
             Method::Random | Method::Jittered => {
@@ -194,7 +208,7 @@ impl SampleKey {
             Method::Sobol => {
                 let count = count.max(1);
                 let i = self.sample.wrapping_mul(count).wrapping_add(index);
-                let key = hash(&[self.pixel_key, dimension, 0x9a7b_50b0]);
+                let key = self.pixel_hash(&[dimension, 0x9a7b_50b0]);
                 sobol4(i, (key >> 32) as u32)
             }
             Method::Random | Method::Jittered => {

@@ -541,6 +541,8 @@ def main():
                          "rays per path vertex for every area light; the default is each light's own, "
                          "4×4 for a jittered light without 'samples')")
     ap.add_argument("--no-ladder", action="store_true", help="converged images and bias only")
+    ap.add_argument("--no-bias", action="store_true",
+                    help="skip our converged image and the bias table (noise and time only)")
     ap.add_argument("--save", help="folder for PNG previews (sRGB) of the converged images")
     ap.add_argument("--mitsuba-only", action="store_true",
                     help="render (and cache) the Mitsuba references only")
@@ -607,86 +609,96 @@ def main():
         if not ours.path_tracer:
             log("warning: %s has no --integrator flag: its default renderer is compared, not a path tracer"
                 % args.raytracer)
-        okey = hashlib.sha256(json.dumps([sha256_file(args.raytracer), ours.extra] + settings)
-                              .encode() + our_bytes).hexdigest()[:16]
-        conv, conv_var = chunked(lambda spp, seed: ours.render(spp, seed, args.ref_threads),
-                                 args.ref_spp, args.chunks,
-                                 os.path.join(CACHE, "%s-ours-%s.npz" % (label, okey)), label + " ours ref",
-                                 args.ref_seed)
-        if args.save:
-            save_png(ref, os.path.join(args.save, label + "_mitsuba.png"))
-            save_png(conv, os.path.join(args.save, label + "_ours.png"))
-
-        # Orientation check: the documented mirroring should match far better than its opposite.
-        straight = np.mean((conv - ref) ** 2)
-        flipped = np.mean((conv - ref[:, ::-1]) ** 2)
-        if flipped < straight:
-            log("warning: %s: our image matches the left-right mirrored Mitsuba image better "
-                "(MSE %.3g vs %.3g): the camera conventions disagree" % (label, flipped, straight))
-
-        rows = region_bias(conv, conv_var, ref, ref_var, args.grid)
-        print("Bias: converged images (%d spp each), mean radiance per region, ours vs Mitsuba, "
-              "relative difference %% ± standard error (goal ≤ 1%%)\n" % args.ref_spp)
-        print("| row \\ column | " + " | ".join(str(j) for j in range(args.grid)) + " |")
-        print("|---" * (args.grid + 1) + "|")
-        for i in range(args.grid):
-            print("| %d | " % i + " | ".join(fmt_pct(r[2], r[3]) for r in rows[i * args.grid:(i + 1) * args.grid]) + " |")
-        cellrows = [r for r in rows[:-1] if r[2] is not None]
-        worst = max(cellrows, key=lambda r: abs(r[2]))
-        whole = rows[-1]
-        chan = [100 * (conv[..., c].mean() - ref[..., c].mean()) / ref[..., c].mean()
-                if ref[..., c].mean() > 0 else float("nan") for c in range(3)]
-        print("\n| measure | value |\n|---|---|")
-        print("| whole image, RGB mean (Mitsuba %.4f) | %s %% |" % (whole[1], fmt_pct(whole[2], whole[3])))
-        print("| whole image, R / G / B | %+.2f / %+.2f / %+.2f %% |" % tuple(chan))
-        print("| worst region (%s, Mitsuba %.4f) | %s %% |" % (worst[0], worst[1], fmt_pct(worst[2], worst[3])))
-        print("| regions skipped (mean ~0) | %d |" % sum(r[2] is None for r in rows[:-1]))
-        print("| MSE ours converged vs Mitsuba reference (less both images' noise) | %.3g |"
-              % (straight - ref_var.mean() - conv_var.mean()))
-        print()
+        if not args.no_bias:
+            bias_table(args, label, ours, our_bytes, settings, ref, ref_var)
         if args.no_ladder:
             continue
+        ladder_tables(args, label, ladder, noise_spp, m, ours, ref, ref_var)
 
-        results = {"mitsuba": {}, "ours": {}}
-        load0 = os.getloadavg()[0]
-        m.cpu_s = m.wall_s = ours.cpu_s = ours.wall_s = 0.0
-        for spp in ladder:
-            for run in range(args.runs):
-                seed = 1 + run
-                img, dt = m.render(spp, seed)
-                results["mitsuba"].setdefault(spp, []).append((dt, mse(img, ref, ref_var)))
-                img, dt = ours.render(spp, seed)
-                results["ours"].setdefault(spp, []).append((dt, mse(img, ref, ref_var)))
-            log("%s: %d spp: Mitsuba %.2f s, ours %.2f s" % (label, spp, results["mitsuba"][spp][-1][0],
-                                                             results["ours"][spp][-1][0]))
-        med = {who: {spp: (statistics.median(t for t, _ in v), statistics.median(e for _, e in v))
-                     for spp, v in r.items()} for who, r in results.items()}
 
-        print("Noise at equal spp: MSE vs the Mitsuba reference, median of %d seeds (goal: ratio ≤ 1)\n"
-              % args.runs)
-        print("| spp | MSE Mitsuba | MSE ours | ours / Mitsuba |\n|---|---|---|---|")
-        for spp in noise_spp:
-            a, b = med["mitsuba"][spp][1], med["ours"][spp][1]
-            print("| %d | %.4g | %.4g | %.2f |" % (spp, a, b, b / a))
-        print()
+def bias_table(args, label, ours, our_bytes, settings, ref, ref_var):
+    """Our converged image (cached), the orientation check and the bias table."""
+    okey = hashlib.sha256(json.dumps([sha256_file(args.raytracer), ours.extra] + settings)
+                          .encode() + our_bytes).hexdigest()[:16]
+    conv, conv_var = chunked(lambda spp, seed: ours.render(spp, seed, args.ref_threads),
+                             args.ref_spp, args.chunks,
+                             os.path.join(CACHE, "%s-ours-%s.npz" % (label, okey)), label + " ours ref",
+                             args.ref_seed)
+    if args.save:
+        save_png(ref, os.path.join(args.save, label + "_mitsuba.png"))
+        save_png(conv, os.path.join(args.save, label + "_ours.png"))
 
-        print("Ladder: median time (s) and MSE, %d runs each, one thread (CPU time / wall time over "
-              "the ladder: Mitsuba %.2f, ours %.2f; load average %.1f before, %.1f after)\n"
-              % (args.runs, m.cpu_s / m.wall_s, ours.cpu_s / ours.wall_s, load0, os.getloadavg()[0]))
-        print("| spp | Mitsuba s | Mitsuba MSE | ours s | ours MSE |\n|---|---|---|---|---|")
-        for spp in ladder:
-            (ta, ea), (tb, eb) = med["mitsuba"][spp], med["ours"][spp]
-            print("| %d | %.3f | %.4g | %.3f | %.4g |" % (spp, ta, ea, tb, eb))
-        print()
+    # Orientation check: the documented mirroring should match far better than its opposite.
+    straight = np.mean((conv - ref) ** 2)
+    flipped = np.mean((conv - ref[:, ::-1]) ** 2)
+    if flipped < straight:
+        log("warning: %s: our image matches the left-right mirrored Mitsuba image better "
+            "(MSE %.3g vs %.3g): the camera conventions disagree" % (label, flipped, straight))
 
-        target = med["mitsuba"][args.target_spp][1]
-        ta, how_a = interp_time(med["mitsuba"], target)
-        tb, how_b = interp_time(med["ours"], target)
-        print("Time to equal error: MSE %.4g (Mitsuba at %d spp), goal ratio ≤ 0.5\n" % (target, args.target_spp))
-        print("| Mitsuba s | ours s | ours / Mitsuba |\n|---|---|---|")
-        print("| %.3f (%s) | %.3f (%s) | %s%.2f |\n" % (ta, how_a, tb, how_b,
-                                                    "≤ " if how_b == "at most" else "", tb / ta))
-        sys.stdout.flush()
+    rows = region_bias(conv, conv_var, ref, ref_var, args.grid)
+    print("Bias: converged images (%d spp each), mean radiance per region, ours vs Mitsuba, "
+          "relative difference %% ± standard error (goal ≤ 1%%)\n" % args.ref_spp)
+    print("| row \\ column | " + " | ".join(str(j) for j in range(args.grid)) + " |")
+    print("|---" * (args.grid + 1) + "|")
+    for i in range(args.grid):
+        print("| %d | " % i + " | ".join(fmt_pct(r[2], r[3]) for r in rows[i * args.grid:(i + 1) * args.grid]) + " |")
+    cellrows = [r for r in rows[:-1] if r[2] is not None]
+    worst = max(cellrows, key=lambda r: abs(r[2]))
+    whole = rows[-1]
+    chan = [100 * (conv[..., c].mean() - ref[..., c].mean()) / ref[..., c].mean()
+            if ref[..., c].mean() > 0 else float("nan") for c in range(3)]
+    print("\n| measure | value |\n|---|---|")
+    print("| whole image, RGB mean (Mitsuba %.4f) | %s %% |" % (whole[1], fmt_pct(whole[2], whole[3])))
+    print("| whole image, R / G / B | %+.2f / %+.2f / %+.2f %% |" % tuple(chan))
+    print("| worst region (%s, Mitsuba %.4f) | %s %% |" % (worst[0], worst[1], fmt_pct(worst[2], worst[3])))
+    print("| regions skipped (mean ~0) | %d |" % sum(r[2] is None for r in rows[:-1]))
+    print("| MSE ours converged vs Mitsuba reference (less both images' noise) | %.3g |"
+          % (straight - ref_var.mean() - conv_var.mean()))
+    print()
+
+
+def ladder_tables(args, label, ladder, noise_spp, m, ours, ref, ref_var):
+    """Both renderers over the ladder: the noise table, the ladder and the time to equal error."""
+    results = {"mitsuba": {}, "ours": {}}
+    load0 = os.getloadavg()[0]
+    m.cpu_s = m.wall_s = ours.cpu_s = ours.wall_s = 0.0
+    for spp in ladder:
+        for run in range(args.runs):
+            seed = 1 + run
+            img, dt = m.render(spp, seed)
+            results["mitsuba"].setdefault(spp, []).append((dt, mse(img, ref, ref_var)))
+            img, dt = ours.render(spp, seed)
+            results["ours"].setdefault(spp, []).append((dt, mse(img, ref, ref_var)))
+        log("%s: %d spp: Mitsuba %.2f s, ours %.2f s" % (label, spp, results["mitsuba"][spp][-1][0],
+                                                         results["ours"][spp][-1][0]))
+    med = {who: {spp: (statistics.median(t for t, _ in v), statistics.median(e for _, e in v))
+                 for spp, v in r.items()} for who, r in results.items()}
+
+    print("Noise at equal spp: MSE vs the Mitsuba reference, median of %d seeds (goal: ratio ≤ 1)\n"
+          % args.runs)
+    print("| spp | MSE Mitsuba | MSE ours | ours / Mitsuba |\n|---|---|---|---|")
+    for spp in noise_spp:
+        a, b = med["mitsuba"][spp][1], med["ours"][spp][1]
+        print("| %d | %.4g | %.4g | %.2f |" % (spp, a, b, b / a))
+    print()
+
+    print("Ladder: median time (s) and MSE, %d runs each, one thread (CPU time / wall time over "
+          "the ladder: Mitsuba %.2f, ours %.2f; load average %.1f before, %.1f after)\n"
+          % (args.runs, m.cpu_s / m.wall_s, ours.cpu_s / ours.wall_s, load0, os.getloadavg()[0]))
+    print("| spp | Mitsuba s | Mitsuba MSE | ours s | ours MSE |\n|---|---|---|---|---|")
+    for spp in ladder:
+        (ta, ea), (tb, eb) = med["mitsuba"][spp], med["ours"][spp]
+        print("| %d | %.3f | %.4g | %.3f | %.4g |" % (spp, ta, ea, tb, eb))
+    print()
+
+    target = med["mitsuba"][args.target_spp][1]
+    ta, how_a = interp_time(med["mitsuba"], target)
+    tb, how_b = interp_time(med["ours"], target)
+    print("Time to equal error: MSE %.4g (Mitsuba at %d spp), goal ratio ≤ 0.5\n" % (target, args.target_spp))
+    print("| Mitsuba s | ours s | ours / Mitsuba |\n|---|---|---|")
+    print("| %.3f (%s) | %.3f (%s) | %s%.2f |\n" % (ta, how_a, tb, how_b,
+                                                "≤ " if how_b == "at most" else "", tb / ta))
+    sys.stdout.flush()
 
 
 def save_png(img, path):

@@ -28,6 +28,7 @@ use glam::{Vec3A, Vec4, Vec4Swizzles};
 
 use super::aabb::{slab, Aabb};
 use super::beam::Beam;
+use super::stack::Stack;
 use super::{any_among, gather};
 use crate::geometry::{Candidate, Primitive};
 use crate::math::{next_float_up, Vec3};
@@ -704,11 +705,9 @@ impl Bvh {
         if !beam.may_hit_box(&Aabb::new(lo.into(), hi.into())) {
             return true;
         }
-        let mut stack = [root; STACK_SIZE];
-        let mut top = 1usize;
-        while top > 0 {
-            top -= 1;
-            let n = stack[top];
+        let mut stack: Stack<NodeRef, STACK_SIZE> = Stack::new();
+        stack.push(root);
+        while let Some(n) = stack.pop() {
             if n.count > 0 {
                 let start = n.index as usize;
                 let leaf = &self.order[start..start + n.count as usize];
@@ -728,11 +727,10 @@ impl Bvh {
                     ),
                 );
                 if beam.may_hit_box(&b) {
-                    stack[top] = NodeRef {
+                    stack.push(NodeRef {
                         index: pair.index(side),
                         count: pair.count(side),
-                    };
-                    top += 1;
+                    });
                 }
             }
         }
@@ -798,8 +796,7 @@ impl Bvh {
         }
         let pr = PairRay::new(r);
         // Entries: node identifier and entry distance.
-        let mut stack = [(0u32, 0.0f32); STACK_SIZE];
-        let mut top = 0usize;
+        let mut stack: Stack<(u32, f32), STACK_SIZE> = Stack::new();
         let mut n = root;
         loop {
             if n.count == 0 {
@@ -816,13 +813,12 @@ impl Bvh {
                 };
                 if hits == 3 {
                     if near1 < near0 {
-                        stack[top] = (k << 1, near0);
+                        stack.push((k << 1, near0));
                         n = c1;
                     } else {
-                        stack[top] = ((k << 1) | 1, near1);
+                        stack.push(((k << 1) | 1, near1));
                         n = c0;
                     }
-                    top += 1;
                     continue;
                 } else if hits == 1 {
                     n = c0;
@@ -837,11 +833,9 @@ impl Bvh {
             // Next subtree from the stack whose entry is not beyond the best hit: the same answer
             // the box test would give now, as its exit side passed when it was pushed.
             loop {
-                if top == 0 {
+                let Some((id, near)) = stack.pop() else {
                     return best.hit();
-                }
-                top -= 1;
-                let (id, near) = stack[top];
+                };
                 if near <= best.t {
                     n = self.node(id);
                     break;
@@ -894,8 +888,7 @@ impl Bvh {
             return false;
         }
         let pr = PairRay::new(r);
-        let mut stack = [0u32; STACK_SIZE];
-        let mut top = 0usize;
+        let mut stack: Stack<u32, STACK_SIZE> = Stack::new();
         let mut n = root;
         loop {
             if n.count == 0 {
@@ -912,13 +905,12 @@ impl Bvh {
                 };
                 if hits == 3 {
                     if near1 < near0 {
-                        stack[top] = k << 1;
+                        stack.push(k << 1);
                         n = c1;
                     } else {
-                        stack[top] = (k << 1) | 1;
+                        stack.push((k << 1) | 1);
                         n = c0;
                     }
-                    top += 1;
                     continue;
                 } else if hits == 1 {
                     n = c0;
@@ -930,11 +922,10 @@ impl Bvh {
             } else if self.leaf_any(prims, r, n, t_max, &mut blocks) {
                 return true;
             }
-            if top == 0 {
+            let Some(id) = stack.pop() else {
                 return false;
-            }
-            top -= 1;
-            n = self.node(stack[top]);
+            };
+            n = self.node(id);
         }
     }
 }

@@ -16,6 +16,7 @@
 pub mod aabb;
 pub mod beam;
 pub mod bvh;
+pub mod stack;
 
 pub use beam::Beam;
 pub use bvh::{Bvh, BvhOptions, BvhStats, Split};

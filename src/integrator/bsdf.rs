@@ -109,7 +109,11 @@ impl Bsdf {
             diffuse,
             glossy,
             exponent,
-            norm: blinn_phong_norm(exponent),
+            norm: if glossy == Vec3::ZERO {
+                0.0
+            } else {
+                blinn_phong_norm(exponent)
+            },
             tint: material.mirror,
             smooth,
             mirror,
@@ -131,42 +135,39 @@ impl Bsdf {
     /// `f(wo, wi)` of the smooth lobes (delta lobes are 0 in every given direction), weighted by
     /// their share `s`.
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        if wi.dot(self.ng) <= 0.0 || wo.dot(self.ng) <= 0.0 {
-            return Vec3::ZERO;
-        }
-        let (co, ci) = (self.n.dot(wo), self.n.dot(wi));
-        if co <= 0.0 || ci <= 0.0 {
-            return Vec3::ZERO;
-        }
-        let mut f = self.diffuse * FRAC_1_PI;
-        if self.glossy != Vec3::ZERO {
-            let h = (wo + wi).normalize_or_zero();
-            f += self.glossy * (self.norm * highlight(self.n.dot(h).max(0.0), self.exponent));
-        }
-        self.smooth * f
+        self.eval_pdf(wo, wi).0
     }
 
     /// The solid-angle density with which [`Bsdf::sample`] picks `wi` (its smooth lobes' share
     /// included).
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.eval_pdf(wo, wi).1
+    }
+
+    /// [`Bsdf::eval`] and [`Bsdf::pdf`] together, sharing the cosines and the half vector: a
+    /// light sample needs both.
+    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
         if !self.has_smooth() || wi.dot(self.ng) <= 0.0 || wo.dot(self.ng) <= 0.0 {
-            return 0.0;
+            return (Vec3::ZERO, 0.0);
         }
-        let ci = self.n.dot(wi);
-        if ci <= 0.0 || self.n.dot(wo) <= 0.0 {
-            return 0.0;
+        let (co, ci) = (self.n.dot(wo), self.n.dot(wi));
+        if co <= 0.0 || ci <= 0.0 {
+            return (Vec3::ZERO, 0.0);
         }
+        let mut f = self.diffuse * FRAC_1_PI;
         let mut p = (1.0 - self.p_glossy) * ci * FRAC_1_PI;
-        if self.p_glossy > 0.0 {
+        if self.glossy != Vec3::ZERO {
             let h = (wo + wi).normalize_or_zero();
+            let ch = self.n.dot(h).max(0.0);
+            let lobe = highlight(ch, self.exponent);
+            f += self.glossy * (self.norm * lobe);
             let oh = wo.dot(h);
             if oh > 0.0 {
-                let ch = self.n.dot(h).max(0.0);
-                let pdf_h = (self.exponent + 1.0) / (2.0 * PI) * highlight(ch, self.exponent);
+                let pdf_h = (self.exponent + 1.0) / (2.0 * PI) * lobe;
                 p += self.p_glossy * pdf_h / (4.0 * oh);
             }
         }
-        self.smooth * p
+        (self.smooth * f, self.smooth * p)
     }
 
     /// A direction for `wo` from `u_lobe` (which lobe, and inside the dielectric which way) and
@@ -217,11 +218,10 @@ impl Bsdf {
             let z = (1.0 - d.length_squared()).max(0.0).sqrt();
             self.world(Vec3::new(d.x, d.y, z))
         };
-        let pdf = self.pdf(wo, wi);
+        let (f, pdf) = self.eval_pdf(wo, wi);
         if pdf <= 0.0 || !pdf.is_finite() {
             return None;
         }
-        let f = self.eval(wo, wi);
         Some(BsdfSample {
             dir: wi,
             weight: f * (self.n.dot(wi) / pdf),

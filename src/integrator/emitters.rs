@@ -36,7 +36,7 @@ pub struct Emitters {
     /// Centre of the scene's bounds, which one-sided lights without a `normal` face.
     centre: Vec3,
     /// The lights that are not scene shapes but have a surface (quads, own spheres).
-    own_surfaces: Vec<u32>,
+    own_surfaces: Vec<(u32, OwnSurface)>,
     /// Scene primitives that are lights: (primitives, light).
     shapes: Vec<(Range<u32>, u32)>,
 }
@@ -90,15 +90,27 @@ impl Emitters {
                 }
                 match light {
                     Light::Point { .. } => power,
-                    Light::Quad { area, .. } => {
-                        own_surfaces.push(i as u32);
+                    Light::Quad {
+                        area,
+                        origin,
+                        edge_u,
+                        edge_v,
+                        normal,
+                        ..
+                    } => {
+                        let quad = Parallelogram::new(*origin, *edge_u, *edge_v, *normal);
+                        own_surfaces.push((i as u32, OwnSurface::Quad(quad)));
                         power / *area
                     }
                     Light::Sphere {
-                        radius, surface, ..
+                        center,
+                        radius,
+                        surface,
+                        ..
                     } => {
                         if surface.is_empty() {
-                            own_surfaces.push(i as u32);
+                            let sphere = Sphere::new(*center, *radius, Vec3::Y, Vec3::X);
+                            own_surfaces.push((i as u32, OwnSurface::Sphere(sphere)));
                         }
                         power / (4.0 * PI * radius * radius)
                     }
@@ -153,6 +165,12 @@ impl Emitters {
         }
     }
 
+    /// Whether every emitter is a light's own surface: no scene primitive emits.
+    #[inline]
+    pub fn lights_are_own_surfaces(&self) -> bool {
+        self.shapes.is_empty()
+    }
+
     /// The light that scene primitive `prim` is part of, if any.
     #[inline]
     pub fn light_of(&self, prim: u32) -> Option<u32> {
@@ -164,35 +182,19 @@ impl Emitters {
 
     /// The nearest hit before `t_max` on a light's own surface (a quad light, a sphere light
     /// that is not a scene shape), other than light `skip`'s.
-    pub fn intersect(
-        &self,
-        lights: &[Light],
-        ray: &Ray,
-        t_max: f32,
-        skip: Option<u32>,
-    ) -> Option<LightHit> {
+    pub fn intersect(&self, ray: &Ray, t_max: f32, skip: Option<u32>) -> Option<LightHit> {
         let mut best: Option<LightHit> = None;
-        for &i in &self.own_surfaces {
+        for &(i, ref surface) in &self.own_surfaces {
             if Some(i) == skip {
                 continue;
             }
             let limit = best.map_or(t_max, |b| b.t);
-            let hit = match &lights[i as usize] {
-                Light::Quad {
-                    origin,
-                    edge_u,
-                    edge_v,
-                    normal,
-                    ..
-                } => hit_parallelogram(ray, *origin, *edge_u, *edge_v, *normal, limit),
-                Light::Sphere { center, radius, .. } => {
-                    let s = Sphere::new(*center, *radius, Vec3::Y, Vec3::X);
-                    s.intersect(ray, limit).map(|c| {
-                        let p = ray.at(c.t);
-                        (c.t, p, (p - *center).normalize_or_zero())
-                    })
-                }
-                Light::Point { .. } | Light::Triangles { .. } => None,
+            let hit = match surface {
+                OwnSurface::Quad(q) => q.hit(ray, limit),
+                OwnSurface::Sphere(s) => s.intersect(ray, limit).map(|c| {
+                    let p = ray.at(c.t);
+                    (c.t, p, (p - s.center).normalize_or_zero())
+                }),
             };
             if let Some((t, point, normal)) = hit {
                 best = Some(LightHit {
@@ -207,35 +209,60 @@ impl Emitters {
     }
 }
 
-/// The ray's hit on the parallelogram `origin + s·eu + t·ev` (`s, t ∈ [0, 1]`, unit normal `n`)
-/// before `t_max`: distance, point and normal.
-fn hit_parallelogram(
-    ray: &Ray,
+/// A light's own surface, with what its ray test needs worked out once.
+#[derive(Debug, Clone)]
+enum OwnSurface {
+    Quad(Parallelogram),
+    Sphere(Sphere),
+}
+
+/// The parallelogram `origin + s·eu + t·ev` (`s, t ∈ [0, 1]`) with unit normal `n`.
+#[derive(Debug, Clone, Copy)]
+struct Parallelogram {
     origin: Vec3,
-    eu: Vec3,
-    ev: Vec3,
     n: Vec3,
-    t_max: f32,
-) -> Option<(f32, Vec3, Vec3)> {
-    let denom = n.dot(ray.dir);
-    if denom == 0.0 || !denom.is_finite() {
-        return None;
+    /// The dual basis of (eu, ev) in the plane, unnormalised: `s = d·a / (eu·a)`, `t = d·b /
+    /// (ev·b)` for `d` from the origin, with `a = ev × n`, `b = n × eu`.
+    a: Vec3,
+    b: Vec3,
+    eu_a: f32,
+    ev_b: f32,
+}
+
+impl Parallelogram {
+    fn new(origin: Vec3, eu: Vec3, ev: Vec3, n: Vec3) -> Parallelogram {
+        let a = ev.cross(n);
+        let b = n.cross(eu);
+        Parallelogram {
+            origin,
+            n,
+            a,
+            b,
+            eu_a: eu.dot(a),
+            ev_b: ev.dot(b),
+        }
     }
-    let t = n.dot(origin - ray.origin) / denom;
-    if !(t > 0.0 && t < t_max) {
-        return None;
-    }
-    let p = ray.at(t);
-    let d = p - origin;
-    // Coordinates in the (eu, ev) basis by the dual basis: (ev × n)/(eu·(ev × n)), likewise.
-    let a = ev.cross(n);
-    let b = n.cross(eu);
-    let s = d.dot(a) / eu.dot(a);
-    let u = d.dot(b) / ev.dot(b);
-    if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&u) {
-        Some((t, p, n))
-    } else {
-        None
+
+    /// The ray's hit before `t_max`: distance, point and normal.
+    #[inline]
+    fn hit(&self, ray: &Ray, t_max: f32) -> Option<(f32, Vec3, Vec3)> {
+        let denom = self.n.dot(ray.dir);
+        if denom == 0.0 || !denom.is_finite() {
+            return None;
+        }
+        let t = self.n.dot(self.origin - ray.origin) / denom;
+        if !(t > 0.0 && t < t_max) {
+            return None;
+        }
+        let p = ray.at(t);
+        let d = p - self.origin;
+        let s = d.dot(self.a) / self.eu_a;
+        let u = d.dot(self.b) / self.ev_b;
+        if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&u) {
+            Some((t, p, self.n))
+        } else {
+            None
+        }
     }
 }
 
@@ -254,11 +281,12 @@ mod tests {
         );
         let n = eu.cross(ev).normalize();
         let up = |x: f32, z: f32| Ray::new(Vec3::new(x, 0.0, z), Vec3::Y);
-        let (t, p, _) = hit_parallelogram(&up(0.0, 0.0), o, eu, ev, n, f32::INFINITY).unwrap();
+        let q = Parallelogram::new(o, eu, ev, n);
+        let (t, p, _) = q.hit(&up(0.0, 0.0), f32::INFINITY).unwrap();
         assert!((t - 2.0).abs() < 1e-6 && (p.y - 2.0).abs() < 1e-6);
-        assert!(hit_parallelogram(&up(1.6, 0.1), o, eu, ev, n, f32::INFINITY).is_none());
-        assert!(hit_parallelogram(&up(1.3, 0.9), o, eu, ev, n, f32::INFINITY).is_some());
-        assert!(hit_parallelogram(&up(0.0, 0.0), o, eu, ev, n, 1.5).is_none());
+        assert!(q.hit(&up(1.6, 0.1), f32::INFINITY).is_none());
+        assert!(q.hit(&up(1.3, 0.9), f32::INFINITY).is_some());
+        assert!(q.hit(&up(0.0, 0.0), 1.5).is_none());
     }
 
     #[test]
@@ -272,7 +300,7 @@ mod tests {
         let scene_centre_below = Emitters {
             emission: vec![Vec3::splat(PI * 2.0 / 2.0)],
             centre: Vec3::new(0.0, -3.0, 0.0),
-            own_surfaces: vec![0],
+            own_surfaces: vec![],
             shapes: vec![],
         };
         let lights = [light.clone()];

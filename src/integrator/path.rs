@@ -27,7 +27,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::accel::Accel;
 use crate::light::Light;
-use crate::math::{Vec2, Vec3};
+use crate::math::{next_float_up, Vec2, Vec3};
 use crate::ray::{Hit, Ray, SpawnPoints};
 use crate::sampling::{Method, SampleKey};
 use crate::scene::Scene;
@@ -117,9 +117,13 @@ impl<'a> PathTracer<'a> {
             if self.cancelled() {
                 return Vec3::ZERO;
             }
+            if depth > last_vertex && self.emitters.lights_are_own_surfaces() {
+                radiance += beta * self.last_ray(&ray, from);
+                break;
+            }
             let closest = self.accel.closest(&scene.primitives, &ray, f32::INFINITY);
             let t_shape = closest.map_or(f32::INFINITY, |(_, c)| c.t);
-            if let Some(h) = self.emitters.intersect(lights, &ray, t_shape, None) {
+            if let Some(h) = self.emitters.intersect(&ray, t_shape, None) {
                 radiance += beta * self.emitted(h.light, h.point, h.normal, -ray.dir, from);
                 break; // a light's own surface absorbs what it does not emit
             }
@@ -184,11 +188,35 @@ impl<'a> PathTracer<'a> {
                     pdf: s.pdf,
                 }
             };
-            ray = hit.spawn(s.dir);
+            ray = spawn.ray(s.dir);
             self.counts.secondary += 1;
             depth += 1;
         }
         finite_radiance(radiance)
+    }
+
+    /// What the ray scattered from the last vertex brings back, when every emitter is a light's
+    /// own surface (no scene shape emits): the light it reaches, or the background if it leaves
+    /// the scene. Equal to what the loop of [`PathTracer::trace_camera`] finds, but asked as
+    /// occlusion queries, which need no closest hit, and none at all for a ray that misses every
+    /// light under a black background.
+    fn last_ray(&mut self, ray: &Ray, from: Scattered) -> Vec3 {
+        let scene = self.scene;
+        let prims = &scene.primitives;
+        match self.emitters.intersect(ray, f32::INFINITY, None) {
+            // The loop counts the light when it is nearer than every shape: no shape at `t ≤ h.t`.
+            Some(h) => {
+                let limit = next_float_up(h.t);
+                if self.accel.any(prims, ray, limit, |_| true) {
+                    Vec3::ZERO
+                } else {
+                    self.emitted(h.light, h.point, h.normal, -ray.dir, from)
+                }
+            }
+            None if scene.background == Vec3::ZERO => Vec3::ZERO,
+            None if self.accel.any(prims, ray, f32::INFINITY, |_| true) => Vec3::ZERO,
+            None => scene.background,
+        }
     }
 
     /// What light `light` sends back along a ray that hit it at `point` (surface normal `normal`),
@@ -242,7 +270,7 @@ impl<'a> PathTracer<'a> {
                 let to = s.position - hit.point;
                 let d2 = to.length_squared();
                 let wi = to / d2.sqrt();
-                let f = bsdf.eval(wo, wi);
+                let (f, bsdf_pdf) = bsdf.eval_pdf(wo, wi);
                 if f == Vec3::ZERO {
                     continue;
                 }
@@ -255,7 +283,7 @@ impl<'a> PathTracer<'a> {
                         let le = self
                             .emitters
                             .radiance(lights, li, s.position, s.normal, -wi);
-                        let w = power_heuristic(count as f32, s.pdf, 1.0, bsdf.pdf(wo, wi));
+                        let w = power_heuristic(count as f32, s.pdf, 1.0, bsdf_pdf);
                         le * (w / s.pdf)
                     }
                 };
@@ -277,11 +305,7 @@ impl<'a> PathTracer<'a> {
         let t_max = dist * (1.0 - LIGHT_CLEARANCE);
         let surface = light.surface();
         let scene = self.scene;
-        if self
-            .emitters
-            .intersect(&scene.lights, &ray, t_max, Some(li))
-            .is_some()
-        {
+        if self.emitters.intersect(&ray, t_max, Some(li)).is_some() {
             return false;
         }
         !self
