@@ -138,6 +138,7 @@ pub fn sphere_grid(g: u32, s: u32, width: u32, height: u32) -> Scene {
         reflection: crate::material::Reflection::Added,
         pixel_samples: None,
         pixel_method: None,
+        tone_map: None,
         light_samples: None,
         lights: vec![Light::Point {
             position: light,
@@ -888,6 +889,7 @@ pub fn random_scene(n: usize, width: u32, height: u32, backdrop: bool) -> Scene 
         reflection: crate::material::Reflection::Added,
         pixel_samples: None,
         pixel_method: None,
+        tone_map: None,
         light_samples: None,
         lights: vec![Light::Point {
             position: Vec3::new(2.0, 3.0, -3.0),

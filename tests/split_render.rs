@@ -325,6 +325,59 @@ fn merge_on_the_command_line_gives_the_bytes_of_the_whole_render() {
     }
 }
 
+/// `"use_tone_mapping": true` (Kierandon's files) makes Reinhard the default tone map of the
+/// render and of a merge of its tiles, without a warning; `--tonemap` still decides.
+#[test]
+fn a_files_tone_map_is_the_default_of_render_and_merge() {
+    let dir = folder_with("cornell.json");
+    let d = dir.path();
+    let text = std::fs::read_to_string(d.join("scene.json")).unwrap();
+    let asks = text.replacen('{', "{\"use_tone_mapping\": true, ", 1);
+    std::fs::write(d.join("asks.json"), asks).unwrap();
+    let args = |scene: &'static str, out: &'static str, extra: &[&'static str]| {
+        let mut v = vec![scene, out, "--spp", "2", "--width", "24", "--height", "16"];
+        v.extend_from_slice(extra);
+        v
+    };
+    let read = |name: &str| std::fs::read(d.join(name)).unwrap();
+    let o = raytracer(d, &args("asks.json", "asks.png", &[]));
+    ok(&o);
+    assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
+    for (out, map) in [("reinhard.png", "reinhard"), ("linear.png", "linear")] {
+        ok(&raytracer(d, &args("scene.json", out, &["--tonemap", map])));
+    }
+    assert_eq!(read("asks.png"), read("reinhard.png"));
+    assert_ne!(read("asks.png"), read("linear.png"));
+    ok(&raytracer(
+        d,
+        &args("asks.json", "flag.png", &["--tonemap", "linear"]),
+    ));
+    assert_eq!(read("flag.png"), read("linear.png"));
+
+    ok(&raytracer(
+        d,
+        &args("asks.json", "t0.exr", &["--sample-range", "0..1"]),
+    ));
+    ok(&raytracer(
+        d,
+        &args("asks.json", "t1.exr", &["--sample-range", "1..2"]),
+    ));
+    ok(&raytracer(d, &["merge", "merged.png", "t0.exr", "t1.exr"]));
+    assert_eq!(read("merged.png"), read("reinhard.png"));
+    ok(&raytracer(
+        d,
+        &[
+            "merge",
+            "merged_linear.png",
+            "t0.exr",
+            "t1.exr",
+            "--tonemap",
+            "linear",
+        ],
+    ));
+    assert_eq!(read("merged_linear.png"), read("linear.png"));
+}
+
 #[test]
 fn grid_tiles_named_by_cell_merge_to_the_whole_render() {
     let dir = folder_with("thinlens.json");

@@ -103,7 +103,10 @@ impl BatchCli {
                 None => "each scene's spp".to_string(),
             },
             format!("seed {}", self.image.seed),
-            format!("tone map {}", self.image.tonemap.name()),
+            match self.image.tonemap {
+                Some(map) => format!("tone map {}", map.name()),
+                None => "each scene's tone map (linear unless it asks for one)".to_string(),
+            },
         ];
         if self.image.exposure != 1.0 {
             parts.push(format!("exposure ×{}", self.image.exposure));
@@ -239,7 +242,7 @@ fn run(cli: &BatchCli, interrupt: &Interrupt) -> Result<Totals, Failure> {
     let flags = &cli.image;
     let plan = |scene: &crate::scene::Scene| ImagePlan {
         render: flags.render_options(scene),
-        tonemap: flags.tonemap,
+        tonemap: flags.tone_map(scene),
         exposure: flags.display_exposure(scene),
     };
     let options = RunOptions {

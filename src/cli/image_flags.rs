@@ -55,8 +55,9 @@ pub(crate) struct ImageFlags {
     pub seed: u64,
     /// Tone map for 8-bit output: linear (the coursework's: ×255, clamp), srgb, reinhard, or
     /// exposure (1 − exp(−x·exposure); the only one a CGR file's camera exposure feeds).
-    #[arg(long, default_value = "linear")]
-    pub tonemap: ToneMap,
+    /// Default: linear, or reinhard for a file that sets "use_tone_mapping": true.
+    #[arg(long)]
+    pub tonemap: Option<ToneMap>,
     /// Multiplies the scene's exposure (a finite number ≥ 0, as in the scene file); for CGR files,
     /// a radiance scale of its own.
     #[arg(long, default_value_t = 1.0, value_parser = values::non_negative_f32)]
@@ -131,8 +132,14 @@ impl ImageFlags {
         }
     }
 
+    /// The tone map of `scene`'s 8-bit output: `--tonemap`, else the one the file asks for, else
+    /// linear.
+    pub(crate) fn tone_map(&self, scene: &Scene) -> ToneMap {
+        ToneMap::chosen(self.tonemap, scene.tone_map)
+    }
+
     /// The exposure the tone map applies to `scene`'s film (see [`Scene::display_exposure`]).
     pub(crate) fn display_exposure(&self, scene: &Scene) -> f32 {
-        scene.display_exposure(self.tonemap) * self.exposure
+        scene.display_exposure(self.tone_map(scene)) * self.exposure
     }
 }

@@ -30,9 +30,10 @@ struct MergeCli {
     /// The tiles (EXR files written by renders with --crop and/or --sample-range).
     #[arg(required = true)]
     tiles: Vec<PathBuf>,
-    /// Tone map for 8-bit output, as for a render.
-    #[arg(long, default_value = "linear")]
-    tonemap: ToneMap,
+    /// Tone map for 8-bit output, as for a render (default: the one the scene asks for, else
+    /// linear).
+    #[arg(long)]
+    tonemap: Option<ToneMap>,
     /// Multiplies the scene's exposure, as for a render.
     #[arg(long, default_value_t = 1.0, value_parser = values::non_negative_f32)]
     exposure: f32,
@@ -79,8 +80,9 @@ fn run(cli: &MergeCli, interrupt: &Interrupt) -> Result<(), Failure> {
     if interrupt.is_set() {
         return Err(Failure::Interrupted(NOT_WRITTEN));
     }
-    let exposure = tiles[0].part.display_exposure(cli.tonemap) * cli.exposure;
-    let bytes = encode_image(&cli.output, &film, cli.tonemap, exposure)
+    let tonemap = ToneMap::chosen(cli.tonemap, tiles[0].part.tone_map);
+    let exposure = tiles[0].part.display_exposure(tonemap) * cli.exposure;
+    let bytes = encode_image(&cli.output, &film, tonemap, exposure)
         .map_err(|e| Failure::Input(e.to_string()))?;
     interrupt.commit(pending, &bytes)?;
     if !cli.quiet {

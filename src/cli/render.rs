@@ -217,7 +217,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         })?,
         None => {
             let exposure = flags.display_exposure(&scene);
-            encode_image(&cli.output, &out.film, cli.image.tonemap, exposure)
+            encode_image(&cli.output, &out.film, flags.tone_map(&scene), exposure)
                 .map_err(|e| Failure::Input(e.to_string()))?
         }
     };

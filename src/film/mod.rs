@@ -123,6 +123,11 @@ impl ToneMap {
             ToneMap::Exposure => "exposure",
         }
     }
+
+    /// `choice` (a command line's `--tonemap`), else what the scene asks for, else linear.
+    pub fn chosen(choice: Option<ToneMap>, scene: Option<ToneMap>) -> ToneMap {
+        choice.or(scene).unwrap_or(ToneMap::Linear)
+    }
 }
 
 impl fmt::Display for ToneMap {

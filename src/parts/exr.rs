@@ -16,7 +16,8 @@
 //! `raytracer.samples` (`A..B`, the samples this part holds) and `raytracer.exposure` (the
 //! scene's display exposure for each tone map, as `linear=… srgb=… reinhard=… exposure=…`);
 //! `raytracer.adaptive` (f32, only in tiles of adaptive renders: the noise threshold; each
-//! pixel's `sum.count` is then the samples it took, 1 to all).
+//! pixel's `sum.count` is then the samples it took, 1 to all); `raytracer.tonemap` (text, only
+//! when the scene asks for a tone map: its name, which a merge then applies by default).
 
 use std::collections::HashMap;
 use std::io::Cursor;
@@ -39,6 +40,7 @@ const SPP: &str = "raytracer.spp";
 const SAMPLES: &str = "raytracer.samples";
 const EXPOSURE: &str = "raytracer.exposure";
 const ADAPTIVE: &str = "raytracer.adaptive";
+const TONEMAP: &str = "raytracer.tonemap";
 const COLOURS: [&str; 3] = ["R", "G", "B"];
 
 /// Why a tile could not be read.
@@ -134,6 +136,9 @@ pub fn encode(part: &Part) -> Result<Vec<u8>, String> {
     other.insert(Text::from(EXPOSURE), text(&exposure.join(" ")));
     if let Some(t) = part.adaptive {
         other.insert(Text::from(ADAPTIVE), AttributeValue::F32(t));
+    }
+    if let Some(m) = part.tone_map {
+        other.insert(Text::from(TONEMAP), text(m.name()));
     }
 
     let layer = Layer::new(
@@ -300,6 +305,14 @@ pub fn decode(path: &Path, bytes: &[u8], max_pixels: u64) -> Result<Part, TileEr
         Some(_) => return Err(damaged(format!("'{ADAPTIVE}' is not a positive number"))),
         None => None,
     };
+    let tone_map = match attrs.get(&Text::from(TONEMAP)) {
+        None => None,
+        Some(_) => Some(
+            text(TONEMAP)?
+                .parse::<ToneMap>()
+                .map_err(|e| damaged(format!("'{TONEMAP}': {e}")))?,
+        ),
+    };
     let counts = channel("sum.count")?.to_vec();
     let expected = samples.end - samples.start;
     let fits = |k: u32| match adaptive {
@@ -318,6 +331,7 @@ pub fn decode(path: &Path, bytes: &[u8], max_pixels: u64) -> Result<Part, TileEr
         spp,
         fingerprint,
         exposure,
+        tone_map,
         sums,
         counts,
         adaptive,
@@ -365,6 +379,7 @@ mod tests {
             spp: 9,
             fingerprint: 0x0123_4567_89ab_cdef,
             exposure: [1.0, 1.0, 1.0, 0.5],
+            tone_map: None,
             sums,
             counts: vec![3; 6],
             adaptive: None,
@@ -373,10 +388,13 @@ mod tests {
 
     #[test]
     fn a_part_survives_the_file_exactly() {
-        let p = part();
-        let bytes = encode(&p).unwrap();
-        let back = decode(Path::new("t.exr"), &bytes, 1 << 20).unwrap();
-        assert_eq!(back, p);
+        let mut p = part();
+        for tone_map in [None, Some(ToneMap::Reinhard)] {
+            p.tone_map = tone_map;
+            let bytes = encode(&p).unwrap();
+            let back = decode(Path::new("t.exr"), &bytes, 1 << 20).unwrap();
+            assert_eq!(back, p);
+        }
     }
 
     #[test]

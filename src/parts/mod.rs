@@ -34,6 +34,8 @@ pub struct Part {
     /// The scene's display exposure for each tone map, in [`ToneMap::ALL`]'s order (see
     /// [`Scene::display_exposure`]): a merge maps tones as the render would.
     pub exposure: [f32; 4],
+    /// The tone map the scene asks for ([`Scene::tone_map`]).
+    pub tone_map: Option<ToneMap>,
     /// The sums, row-major over `window`.
     pub sums: Vec<PixelSum>,
     /// The samples summed in each pixel, row-major over `window`: all of `samples`, or for an
@@ -66,6 +68,7 @@ impl Part {
             spp: options.spp.max(1),
             fingerprint,
             exposure: display_exposures(scene),
+            tone_map: scene.tone_map,
             sums,
             counts,
             adaptive: options.adaptive.map(|a| a.threshold),

@@ -26,6 +26,7 @@ use super::{RenderMode, Scene, Variant};
 use crate::camera::{Camera, Handedness, Lens};
 use crate::files::input::{self, SizeLimit};
 use crate::files::{raise_hint, shown};
+use crate::film::ToneMap;
 use crate::geometry::{Cylinder, Mesh, MeshUv, Plane, Primitive, Shape, Sphere, Triangle};
 use crate::image_io::ReadLimits;
 use crate::light::{Falloff, Intensity, Light};
@@ -521,7 +522,7 @@ impl<'o> Loader<'o> {
             );
         }
         let (pixel_samples, light_samples) = self.sample_counts(root, lens_samples)?;
-        self.renderer_switches(root)?;
+        let tone_map = self.renderer_switches(root)?;
         // Last, when every lookup is done: the keys none of them read.
         for (node, message) in keys::unknown_keys(root) {
             self.warn(&node, message);
@@ -548,6 +549,7 @@ impl<'o> Loader<'o> {
             pixel_samples,
             pixel_method,
             light_samples,
+            tone_map,
             lights: self.lights,
             primitives: self.primitives,
             materials: self.materials,
@@ -1745,9 +1747,10 @@ impl<'o> Loader<'o> {
     /// Top-level switches of the renderers path-tracing files were written for. Sampling
     /// strategies change how fast an image converges, not what it converges to, and global
     /// illumination and caustics are what the path tracer does: those are read quietly.
-    /// Post-processes this renderer does not do (a denoiser, a blur, a tone map) are warned about
-    /// when a file turns them on.
-    fn renderer_switches(&mut self, root: &Node) -> Result<(), SceneError> {
+    /// Post-processes this renderer does not do (a denoiser, a blur) are warned about when a file
+    /// turns them on; the tone map a file turns on (`use_tone_mapping`: Kierandon's renderer
+    /// applies Reinhard's `x/(1+x)` per channel) is returned.
+    fn renderer_switches(&mut self, root: &Node) -> Result<Option<ToneMap>, SceneError> {
         for key in [
             "use_stratified_sampling",
             "use_importance_sampling",
@@ -1770,7 +1773,6 @@ impl<'o> Loader<'o> {
         for (key, what) in [
             ("use_denoiser", "a denoiser"),
             ("use_gaussian_blur", "a Gaussian blur"),
-            ("use_tone_mapping", "a tone map (choose one with --tonemap)"),
         ] {
             if let Some(n) = root.get(key) {
                 if n.bool()? {
@@ -1781,7 +1783,10 @@ impl<'o> Loader<'o> {
                 }
             }
         }
-        Ok(())
+        match root.get("use_tone_mapping") {
+            Some(n) if n.bool()? => Ok(Some(ToneMap::Reinhard)),
+            _ => Ok(None),
+        }
     }
 
     /// The physically based material forms path-tracing files use (`"type"` with `albedo`,

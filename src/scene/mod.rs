@@ -71,6 +71,9 @@ pub struct Scene {
     /// Shadow rays per shading point for every area light, if the file sets them for all at once
     /// (`lightsample` and other spellings).
     pub light_samples: Option<u32>,
+    /// The tone map the file asks for (`"use_tone_mapping": true`: [`ToneMap::Reinhard`]), which
+    /// 8-bit output takes unless told otherwise (`--tonemap`).
+    pub tone_map: Option<ToneMap>,
     pub lights: Vec<Light>,
     pub primitives: Vec<Primitive>,
     pub materials: Vec<Material>,
