@@ -95,12 +95,23 @@ pub struct Hit {
 /// rounded away from `p` (pbrt-v4 §6.8.6 "Robust Spawned Ray Origins").
 #[inline]
 pub fn offset_ray_origin(p: Vec3, error: Vec3, n: Vec3, w: Vec3) -> Vec3 {
-    let d = n.abs().dot(error);
-    let mut offset = d * n;
+    let offset = surface_offset(error, n);
     if w.dot(n) < 0.0 {
-        offset = -offset;
+        rounded_away(p - offset, -offset)
+    } else {
+        rounded_away(p + offset, offset)
     }
-    let mut po = p + offset;
+}
+
+/// How far along `n` a point with error bound `error` must move to leave the surface's error box.
+#[inline]
+fn surface_offset(error: Vec3, n: Vec3) -> Vec3 {
+    n.abs().dot(error) * n
+}
+
+/// `po` (a point moved by `offset`) rounded one step further in each component `offset` moves.
+#[inline]
+fn rounded_away(mut po: Vec3, offset: Vec3) -> Vec3 {
     for i in 0..3 {
         if offset[i] > 0.0 {
             po[i] = crate::math::next_float_up(po[i]);
@@ -183,11 +194,12 @@ impl Hit {
     /// The origins of every ray this hit may spawn (see [`SpawnPoints`]).
     #[inline]
     pub fn spawn_points(&self) -> SpawnPoints {
+        let offset = surface_offset(self.error, self.normal);
         SpawnPoints {
             point: self.point,
             normal: self.normal,
-            above: offset_ray_origin(self.point, self.error, self.normal, self.normal),
-            below: offset_ray_origin(self.point, self.error, self.normal, -self.normal),
+            above: rounded_away(self.point + offset, offset),
+            below: rounded_away(self.point - offset, -offset),
         }
     }
 }
