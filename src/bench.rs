@@ -651,6 +651,51 @@ pub fn ray_sets(scene: &Scene, accel: &Accel, light: Vec3, seed: u64) -> RaySets
     sets
 }
 
+/// Writes grid `(g, s)`'s triangles and its three ray sets (those [`throughput`] traces) to
+/// `dir` as raw little-endian `f32` files; returns their names. `grid_G{g}_S{s}.tris.f32`: 9
+/// numbers per triangle (its corners); `.primary.f32` and `.incoherent.f32`: 6 per ray (origin,
+/// direction); `.shadow.f32`: 7 per ray (origin, direction, and the distance to the light, which
+/// bounds the any-hit query).
+pub fn export_grid(dir: &Path, g: u32, s: u32, leaf_size: usize) -> Result<Vec<String>, String> {
+    let scene = sphere_grid(g, s, 640, 480);
+    let accel = Accel::build(&scene.primitives, AccelKind::Sah, leaf_size);
+    let sets = ray_sets(&scene, &accel, grid_light(g), 0);
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", shown(dir)))?;
+    let ray = |r: &Ray| [r.origin.to_array(), r.dir.to_array()].concat();
+    let tables: [(&str, Vec<f32>); 4] = [
+        (
+            "tris",
+            scene
+                .primitives
+                .iter()
+                .filter_map(|p| match &p.shape {
+                    Shape::Triangle(t) => Some(t.p.map(|v| v.to_array()).concat()),
+                    _ => None,
+                })
+                .flatten()
+                .collect(),
+        ),
+        ("primary", sets.primary.iter().flat_map(ray).collect()),
+        (
+            "shadow",
+            sets.shadow
+                .iter()
+                .flat_map(|(r, t)| [ray(r), vec![*t]].concat())
+                .collect(),
+        ),
+        ("incoherent", sets.incoherent.iter().flat_map(ray).collect()),
+    ];
+    let mut names = Vec::new();
+    for (what, numbers) in tables {
+        let name = format!("grid_G{g}_S{s}.{what}.f32");
+        let bytes: Vec<u8> = numbers.iter().flat_map(|x| x.to_le_bytes()).collect();
+        let path = dir.join(&name);
+        std::fs::write(&path, bytes).map_err(|e| format!("{}: {e}", shown(&path)))?;
+        names.push(name);
+    }
+    Ok(names)
+}
+
 /// Which query a ray set uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RayKind {

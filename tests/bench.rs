@@ -92,6 +92,66 @@ fn quick_ray_throughput_reports_every_set() {
     }
 }
 
+/// `--export` writes the grid's triangles and ray sets whole: as many triangles as the grid has,
+/// one primary ray per pixel, and one shadow and one incoherent ray per primary hit (the hits the
+/// CSV reports), every number finite and every direction a unit vector.
+#[test]
+fn exported_rays_are_the_benchmarks_rays() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("rays.csv");
+    let out = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+        .args(["bench", "--rays", "--quick", "--threads", "1", "--export"])
+        .arg(dir.path())
+        .arg("--csv")
+        .arg(&csv)
+        .output()
+        .expect("run raytracer bench --rays --export");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let read = |what: &str, width: usize| -> Vec<Vec<f32>> {
+        let bytes = std::fs::read(dir.path().join(format!("grid_G2_S8.{what}.f32"))).unwrap();
+        assert_eq!(bytes.len() % (4 * width), 0, "{what}");
+        let numbers: Vec<f32> = bytes
+            .chunks_exact(4)
+            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+            .collect();
+        assert!(numbers.iter().all(|x| x.is_finite()), "{what}");
+        numbers.chunks(width).map(<[f32]>::to_vec).collect()
+    };
+    assert_eq!(
+        read("tris", 9).len(),
+        raytracer::bench::sphere_grid_triangles(2, 8)
+    );
+    let primary_hits: usize = std::fs::read_to_string(&csv)
+        .unwrap()
+        .lines()
+        .find(|l| l.contains(",primary,"))
+        .and_then(|l| l.split(',').nth(7))
+        .and_then(|h| h.parse().ok())
+        .expect("the CSV's primary row gives its hits");
+    for (what, width, rays) in [
+        ("primary", 6, 640 * 480),
+        ("shadow", 7, primary_hits),
+        ("incoherent", 6, primary_hits),
+    ] {
+        let rows = read(what, width);
+        assert_eq!(rows.len(), rays, "{what}");
+        for r in &rows {
+            let len = (r[3] * r[3] + r[4] * r[4] + r[5] * r[5]).sqrt();
+            assert!((len - 1.0).abs() < 1e-4, "{what}: direction {r:?}");
+        }
+        if width == 7 {
+            assert!(
+                rows.iter().all(|r| r[6] > 0.0),
+                "shadow rays end at the light"
+            );
+        }
+    }
+}
+
 #[test]
 fn bench_usage_errors_exit_2_and_render_usage_is_unchanged() {
     let run = |args: &[&str]| {

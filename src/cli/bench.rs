@@ -11,8 +11,8 @@ use clap::Parser;
 
 use crate::accel::bvh::STACK_SIZE;
 use crate::bench::{
-    crossover, default_scenes_dir, format_csv, format_table, row_fields, sphere_grid_triangles,
-    table1, throughput, TableOptions, Throughput, TABLE_HEADER,
+    crossover, default_scenes_dir, export_grid, format_csv, format_table, row_fields,
+    sphere_grid_triangles, table1, throughput, TableOptions, Throughput, TABLE_HEADER,
 };
 
 use super::interrupt::Interrupt;
@@ -45,6 +45,11 @@ struct BenchCli {
     /// With --rays: also the 8,388,610-triangle grid (G=32, S=64), once (needs about 2 GB).
     #[arg(long, requires = "rays")]
     huge: bool,
+    /// With --rays: also write each grid's triangles and ray sets to this folder as raw
+    /// little-endian f32 files, for another renderer to trace the same rays
+    /// (benches/peers/embree.py).
+    #[arg(long, value_name = "DIR", requires = "rays")]
+    export: Option<PathBuf>,
     /// Measure where a BVH starts to pay: none against sah on scenes of 1 to 64 primitives.
     #[arg(long)]
     crossover: bool,
@@ -156,6 +161,10 @@ fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
                 "grid G={g} S={s}: {} triangles…",
                 sphere_grid_triangles(g, s)
             );
+            if let Some(dir) = &cli.export {
+                let files = export_grid(dir, g, s, leaf_size)?;
+                eprintln!("grid G={g} S={s}: wrote {}", files.join(", "));
+            }
             let t = throughput(g, s, n, leaf_size);
             print_throughput(&t, threads);
             rows.extend(throughput_rows(&t, threads));

@@ -1,0 +1,159 @@
+"""Ray for ray against Embree 4: the same triangles and the same rays, one thread each, one run.
+
+    pip install embreex            # Embree 4 through its Python binding
+    cargo build --release
+    python3 benches/peers/embree.py [--runs 5] [--huge] [--quick] [--raytracer BIN]
+
+`raytracer bench --rays --threads 1 --export DIR` measures our BVH on the sphere grids (G=4, S=16:
+8,194 triangles; G=16, S=32: 524,290; with --huge G=32, S=64: 8,388,610) and writes each grid's
+triangles and ray sets to DIR (`raytracer bench --help`). This script then loads the same files
+into Embree (one triangle mesh, default scene flags, build quality medium) and times:
+
+- secondary rays start 1e-5 of the scene's diagonal further along for Embree: it begins every
+  ray at tnear = 0, where its own test would hit the surface a ray leaves;
+- build: `TriangleMesh(...)` and the scene commit (the first query commits it), median of --runs;
+- primary and incoherent rays: closest hit (`run(..., query='INTERSECT')`), shadow rays: any hit
+  up to the distance to the light (`query='OCCLUDED'`, tfar = that distance), each the median of
+  --runs. embreex traces an array of rays in a compiled loop of single-ray queries
+  (rtcIntersect1/rtcOccluded1), so no Python runs per ray.
+
+Both run pinned to one CPU (`os.sched_setaffinity`), in the same invocation, so the ratios hold
+even where absolute figures drift. The hit counts of both are printed: they agree to a few rays
+in a million (rays through shared edges and grazing hits are where two correct tests can differ).
+A benchmark, never a test: CI does not run it. The measured table is in docs/performance.md.
+"""
+
+import argparse
+import csv
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+
+
+def load(path, width):
+    a = np.fromfile(path, dtype="<f4")
+    return a.reshape(-1, width)
+
+
+def embree_grid(prefix, runs):
+    from embreex import rtcore_scene as rtcs
+    from embreex.mesh_construction import TriangleMesh
+
+    tris = load(prefix + ".tris.f32", 9).reshape(-1, 3, 3).astype(np.float32)
+    probe_o = np.zeros((1, 3), np.float32)
+    probe_d = np.array([[0, 0, 1]], np.float32)
+    builds = []
+    scene = None
+    for _ in range(runs):
+        scene = None
+        t0 = time.perf_counter()
+        scene = rtcs.EmbreeScene()
+        TriangleMesh(scene, tris)
+        scene.run(probe_o, probe_d)  # commits the scene: the build
+        builds.append(time.perf_counter() - t0)
+    out = {"triangles": len(tris), "build_s": statistics.median(builds)}
+    # Embree starts every ray at tnear = 0 and its test is not the one our origins were offset
+    # for, so secondary rays would hit the surface they leave. They start a little further along
+    # instead (1e-5 of the scene's diagonal), for Embree only.
+    lo, hi = tris.reshape(-1, 3).min(axis=0), tris.reshape(-1, 3).max(axis=0)
+    eps = np.float32(1e-5 * np.linalg.norm(hi - lo))
+    for name, width, query in (("primary", 6, "INTERSECT"), ("shadow", 7, "OCCLUDED"),
+                               ("incoherent", 6, "INTERSECT")):
+        rays = load("%s.%s.f32" % (prefix, name), width)
+        o = rays[:, 0:3]
+        d = np.ascontiguousarray(rays[:, 3:6])
+        if name != "primary":
+            o = o + eps * d
+        o = np.ascontiguousarray(o, dtype=np.float32)
+        dists = np.ascontiguousarray(rays[:, 6] - eps) if width == 7 else None
+        times = []
+        hits = 0
+        for _ in range(runs):
+            t0 = time.perf_counter()
+            if dists is None:
+                r = scene.run(o, d, query=query)
+            else:
+                r = scene.run(o, d, dists=dists, query=query)
+            times.append(time.perf_counter() - t0)
+            hits = int(np.count_nonzero(np.asarray(r) >= 0) if query == "INTERSECT"
+                       else np.count_nonzero(np.asarray(r) != -1))
+        out[name] = {"rays": len(rays), "s": statistics.median(times), "hits": hits}
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--raytracer", default=os.path.join(ROOT, "target", "release", "raytracer"))
+    ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--huge", action="store_true", help="also the 8.4 M-triangle grid (about 3 GB)")
+    ap.add_argument("--quick", action="store_true", help="the small smoke grid only")
+    ap.add_argument("--cpu", type=int, default=None, help="the CPU both run on (default: the first allowed)")
+    args = ap.parse_args()
+    try:
+        import embreex  # noqa: F401
+    except ImportError:
+        sys.exit("embreex is not installed: pip install embreex")
+    if not os.path.exists(args.raytracer):
+        sys.exit("no raytracer binary at %s (cargo build --release, or --raytracer)" % args.raytracer)
+    cpu = args.cpu if args.cpu is not None else min(os.sched_getaffinity(0))
+    os.sched_setaffinity(0, {cpu})
+    tmp = tempfile.mkdtemp(prefix="raytracer-embree-")
+    ours_csv = os.path.join(tmp, "ours.csv")
+    cmd = [args.raytracer, "bench", "--rays", "--threads", "1", "--runs", str(args.runs),
+           "--export", tmp, "--csv", ours_csv]
+    if args.huge:
+        cmd.append("--huge")
+    if args.quick:
+        cmd.append("--quick")
+    print("$ " + " ".join(cmd), file=sys.stderr)
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    ours = {}
+    with open(ours_csv) as f:
+        for row in csv.DictReader(f):
+            ours.setdefault(row["grid"], {})[row["set"]] = row
+
+    print("Embree 4 (embreex %s) and raytracer, one thread each on CPU %d, medians of %d runs\n"
+          % (embreex_version(), cpu, args.runs))
+    print("| grid | triangles | set | raytracer Mrays/s | Embree Mrays/s | ratio | hits (ours / Embree) |")
+    print("|---|---:|---|---:|---:|---:|---|")
+    builds = []
+    for grid, rows in ours.items():
+        g, s = grid[1:].split("S")
+        prefix = os.path.join(tmp, "grid_G%s_S%s" % (g, s))
+        e = embree_grid(prefix, args.runs)
+        for name in ("primary", "shadow", "incoherent"):
+            r = rows[name]
+            mine = float(r["mrays_1t"])
+            theirs = e[name]["rays"] / e[name]["s"] / 1e6
+            print("| %s | %d | %s | %.2f | %.2f | %.2f× | %s / %d |"
+                  % (grid, e["triangles"], name, mine, theirs, mine / theirs, r["hits"], e[name]["hits"]))
+        first = next(iter(rows.values()))
+        builds.append((grid, float(first["sah_build_ms"]), e["build_s"] * 1e3, float(first["bytes_per_tri"])))
+        sys.stdout.flush()
+    print("\n| grid | raytracer build ms | Embree build ms | ours / Embree | raytracer bytes per triangle |")
+    print("|---|---:|---:|---:|---:|")
+    for grid, mine, theirs, bpt in builds:
+        print("| %s | %.1f | %.1f | %.2f× | %.1f |" % (grid, mine, theirs, mine / theirs, bpt))
+    for name in os.listdir(tmp):
+        os.remove(os.path.join(tmp, name))
+    os.rmdir(tmp)
+
+
+def embreex_version():
+    try:
+        from importlib.metadata import version
+        return version("embreex")
+    except Exception:
+        return "?"
+
+
+if __name__ == "__main__":
+    main()
