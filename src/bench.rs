@@ -651,15 +651,16 @@ pub fn ray_sets(scene: &Scene, accel: &Accel, light: Vec3, seed: u64) -> RaySets
     sets
 }
 
-/// Writes grid `(g, s)`'s triangles and its three ray sets (those [`throughput`] traces) to
-/// `dir` as raw little-endian `f32` files; returns their names. `grid_G{g}_S{s}.tris.f32`: 9
-/// numbers per triangle (its corners); `.primary.f32` and `.incoherent.f32`: 6 per ray (origin,
-/// direction); `.shadow.f32`: 7 per ray (origin, direction, and the distance to the light, which
-/// bounds the any-hit query).
-pub fn export_grid(dir: &Path, g: u32, s: u32, leaf_size: usize) -> Result<Vec<String>, String> {
-    let scene = sphere_grid(g, s, 640, 480);
-    let accel = Accel::build(&scene.primitives, AccelKind::Sah, leaf_size);
-    let sets = ray_sets(&scene, &accel, grid_light(g), 0);
+/// Writes grid `(g, s)`'s triangles (`scene`) and its three ray sets to `dir` as raw
+/// little-endian `f32` files. `grid_G{g}_S{s}.tris.f32`: 9 numbers per triangle (its corners);
+/// `.primary.f32` and `.incoherent.f32`: 6 per ray (origin, direction); `.shadow.f32`: 7 per ray
+/// (origin, direction, and the distance to the light, which bounds the any-hit query).
+fn export_grid(
+    dir: &Path,
+    (g, s): (u32, u32),
+    scene: &Scene,
+    sets: &RaySets,
+) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", shown(dir)))?;
     let ray = |r: &Ray| [r.origin.to_array(), r.dir.to_array()].concat();
     let tables: [(&str, Vec<f32>); 4] = [
@@ -685,15 +686,12 @@ pub fn export_grid(dir: &Path, g: u32, s: u32, leaf_size: usize) -> Result<Vec<S
         ),
         ("incoherent", sets.incoherent.iter().flat_map(ray).collect()),
     ];
-    let mut names = Vec::new();
     for (what, numbers) in tables {
-        let name = format!("grid_G{g}_S{s}.{what}.f32");
         let bytes: Vec<u8> = numbers.iter().flat_map(|x| x.to_le_bytes()).collect();
-        let path = dir.join(&name);
+        let path = dir.join(format!("grid_G{g}_S{s}.{what}.f32"));
         std::fs::write(&path, bytes).map_err(|e| format!("{}: {e}", shown(&path)))?;
-        names.push(name);
     }
-    Ok(names)
+    Ok(())
 }
 
 /// Which query a ray set uses.
@@ -797,8 +795,15 @@ pub struct Throughput {
 
 /// Runs the throughput benchmark on the `g×g`, `s×s` grid: SAH build (median of `runs`, or one
 /// build if `runs` is 0), each ray set on one thread and on the current pool (medians of `runs`),
-/// and a full render on one thread and on the pool.
-pub fn throughput(g: u32, s: u32, runs: usize, leaf_size: usize) -> Throughput {
+/// and a full render on one thread and on the pool. With `export`, the grid's triangles and ray
+/// sets are first written to that folder (see `export_grid`), for other tracers to trace.
+pub fn throughput(
+    g: u32,
+    s: u32,
+    runs: usize,
+    leaf_size: usize,
+    export: Option<&Path>,
+) -> Result<Throughput, String> {
     let scene = sphere_grid(g, s, 640, 480);
     let (build, accel) = timed(runs, || {
         Accel::build(&scene.primitives, AccelKind::Sah, leaf_size)
@@ -807,6 +812,9 @@ pub fn throughput(g: u32, s: u32, runs: usize, leaf_size: usize) -> Throughput {
         Accel::build(&scene.primitives, AccelKind::Median, leaf_size)
     });
     let sets = ray_sets(&scene, &accel, grid_light(g), 0);
+    if let Some(dir) = export {
+        export_grid(dir, (g, s), &scene, &sets)?;
+    }
     let mut results = Vec::new();
     for kind in RayKind::ALL {
         let (single, hits) = timed(runs, || trace_set(&scene, &accel, &sets, kind, false));
@@ -839,7 +847,7 @@ pub fn throughput(g: u32, s: u32, runs: usize, leaf_size: usize) -> Throughput {
             .expect("the pixel buffers of a loaded scene fit in memory")
     });
     let stats = accel.stats().unwrap_or_default();
-    Throughput {
+    Ok(Throughput {
         g,
         s,
         triangles: triangle_count(&scene),
@@ -853,7 +861,7 @@ pub fn throughput(g: u32, s: u32, runs: usize, leaf_size: usize) -> Throughput {
         render_single,
         render_parallel,
         render_rays: out.counts.total(),
-    }
+    })
 }
 
 // ---------------------------------------------------------------------------------------------

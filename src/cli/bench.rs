@@ -1,6 +1,7 @@
 //! `raytracer bench`: the command line of the benchmarks in [`crate::bench`].
 
 use crate::files::output::Outputs;
+use crate::files::shown;
 use std::ffi::OsString;
 use std::io::Write;
 use std::path::PathBuf;
@@ -11,8 +12,8 @@ use clap::Parser;
 
 use crate::accel::bvh::STACK_SIZE;
 use crate::bench::{
-    crossover, default_scenes_dir, export_grid, format_csv, format_table, row_fields,
-    sphere_grid_triangles, table1, throughput, TableOptions, Throughput, TABLE_HEADER,
+    crossover, default_scenes_dir, format_csv, format_table, row_fields, sphere_grid_triangles,
+    table1, throughput, TableOptions, Throughput, TABLE_HEADER,
 };
 
 use super::interrupt::Interrupt;
@@ -161,11 +162,13 @@ fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
                 "grid G={g} S={s}: {} triangles…",
                 sphere_grid_triangles(g, s)
             );
+            let t = throughput(g, s, n, leaf_size, cli.export.as_deref())?;
             if let Some(dir) = &cli.export {
-                let files = export_grid(dir, g, s, leaf_size)?;
-                eprintln!("grid G={g} S={s}: wrote {}", files.join(", "));
+                eprintln!(
+                    "grid G={g} S={s}: triangles and rays written to {}",
+                    shown(dir)
+                );
             }
-            let t = throughput(g, s, n, leaf_size);
             print_throughput(&t, threads);
             rows.extend(throughput_rows(&t, threads));
         }
