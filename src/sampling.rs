@@ -175,8 +175,7 @@ impl SampleKey {
     #[inline]
     pub fn padded(&self, method: Method, dimension: u64, index: u32, count: u32) -> Vec2 {
         let count = count.max(1);
-        let i = self.sample.wrapping_mul(count).wrapping_add(index);
-        let key = self.pixel_hash(&[dimension, 0x9a7b_50b0]);
+        let (i, key) = self.padded_point(dimension, index, count);
         match method {
             Method::Sobol => sobol2(i, (key >> 32) as u32),
             Method::Random | Method::Jittered => {
@@ -206,9 +205,7 @@ impl SampleKey {
     pub fn padded4(&self, method: Method, dimension: u64, index: u32, count: u32) -> [f32; 4] {
         match method {
             Method::Sobol => {
-                let count = count.max(1);
-                let i = self.sample.wrapping_mul(count).wrapping_add(index);
-                let key = self.pixel_hash(&[dimension, 0x9a7b_50b0]);
+                let (i, key) = self.padded_point(dimension, index, count.max(1));
                 sobol4(i, (key >> 32) as u32)
             }
             Method::Random | Method::Jittered => {
@@ -217,6 +214,14 @@ impl SampleKey {
                 [a.x, a.y, b.x, b.y]
             }
         }
+    }
+
+    /// Where point `index` of this camera sample's `count` (≥ 1) lies in the pixel's padded set for
+    /// `dimension`, and the set's per-pixel key.
+    #[inline]
+    fn padded_point(&self, dimension: u64, index: u32, count: u32) -> (u32, u64) {
+        let i = self.sample.wrapping_mul(count).wrapping_add(index);
+        (i, self.pixel_hash(&[dimension, 0x9a7b_50b0]))
     }
 
     /// Sample `index` of `count` samples placed with `method` in the unit square, for a set of
