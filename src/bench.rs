@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
-use crate::accel::{Accel, AccelKind};
+use crate::accel::{Accel, AccelKind, AUTO_MIN_PRIMITIVES};
 use crate::camera::{Camera, Handedness};
 use crate::files::shown;
 use crate::geometry::{Mesh, MeshUv, Primitive, Shape, Sphere, Triangle};
@@ -375,7 +375,7 @@ pub struct Row {
     pub height: u32,
     pub light: LightVariant,
     pub accel: AccelKind,
-    /// What `accel` built: `list`, `median` or `sah`.
+    /// What `accel` built: `list`, `flat`, `median` or `sah`.
     pub built: &'static str,
     pub build: Duration,
     /// `None` when skipped.
@@ -451,6 +451,8 @@ fn table_row(
     });
     let built = match (&accel, kind) {
         (Accel::Bvh(_), AccelKind::Median) => "median",
+        (Accel::Bvh(_), AccelKind::Flat) => "flat",
+        (Accel::Bvh(_), AccelKind::Auto) if scene.primitives.len() < AUTO_MIN_PRIMITIVES => "flat",
         (Accel::Bvh(_), _) => "sah",
         (a, _) => built_name(a),
     };
@@ -962,16 +964,17 @@ pub fn random_scene(n: usize, width: u32, height: u32, backdrop: bool) -> Scene 
     }
 }
 
-/// Query times of `random_scene(n, backdrop)` with `none` and with `sah`, for each `n`: the three
-/// ray sets of [`ray_sets`] (camera rays at 320×240, shadow rays to the light, random secondary
-/// rays) traced on this thread, medians of `runs`. Timing the queries alone, not whole renders,
-/// keeps shading and ray generation, which both accelerators share, out of the comparison.
+/// Query times of `random_scene(n, backdrop)` with `none`, `flat` and `sah`, for each `n`: the
+/// three ray sets of [`ray_sets`] (camera rays at 320×240, shadow rays to the light, random
+/// secondary rays) traced on this thread, medians of `runs`. Timing the queries alone, not whole
+/// renders, keeps shading and ray generation, which the accelerators share, out of the
+/// comparison.
 pub fn crossover(
     sizes: &[usize],
     backdrop: bool,
     runs: usize,
     leaf_size: usize,
-) -> Vec<(usize, Duration, Duration)> {
+) -> Vec<(usize, [Duration; 3])> {
     sizes
         .iter()
         .map(|&n| {
@@ -991,7 +994,8 @@ pub fn crossover(
                 })
                 .0
             };
-            (n, time(&Accel::List), time(&sah))
+            let flat = Accel::build(&scene.primitives, AccelKind::Flat, leaf_size);
+            (n, [time(&Accel::List), time(&flat), time(&sah)])
         })
         .collect()
 }

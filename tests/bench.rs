@@ -8,7 +8,7 @@ use std::process::Command;
 use common::repo;
 use raytracer::accel::AUTO_MIN_PRIMITIVES;
 
-const ACCELS: [&str; 4] = ["auto", "none", "median", "sah"];
+const ACCELS: [&str; 5] = ["auto", "none", "flat", "median", "sah"];
 
 #[test]
 fn quick_table_has_every_scene_light_and_accelerator() {
@@ -62,13 +62,14 @@ fn quick_table_has_every_scene_light_and_accelerator() {
             }
         }
     }
-    // `none`, and `auto` on tiny scenes, build nothing.
+    // `none` builds nothing; `flat`, and `auto` on tiny scenes, build one leaf.
     for r in &rows {
         let tiny = r[col("prims")].parse::<usize>().unwrap() < AUTO_MIN_PRIMITIVES;
         let accel = r[col("accel")];
+        assert_eq!(r[col("built")] == "list", accel == "none", "{r:?}");
         assert_eq!(
-            r[col("built")] == "list",
-            accel == "none" || (accel == "auto" && tiny),
+            r[col("built")] == "flat",
+            accel == "flat" || (accel == "auto" && tiny),
             "{r:?}"
         );
     }

@@ -16,6 +16,7 @@
 pub mod aabb;
 pub mod beam;
 pub mod bvh;
+pub mod kernels;
 pub mod stack;
 
 pub use beam::Beam;
@@ -27,12 +28,15 @@ use crate::ray::{PreparedRay, Ray};
 /// Which accelerator to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum AccelKind {
-    /// The SAH BVH, except for scenes so small that testing every primitive is as fast
-    /// (fewer than [`AUTO_MIN_PRIMITIVES`]).
+    /// The SAH BVH, except for scenes so small that testing every primitive in SIMD blocks is
+    /// as fast (fewer than [`AUTO_MIN_PRIMITIVES`]): then `flat`.
     #[default]
     Auto,
-    /// Test every primitive.
+    /// Test every primitive, one by one (the reference every other kind agrees with).
     None,
+    /// Every primitive in one BVH leaf: no traversal, triangles and spheres tested four at a
+    /// time.
+    Flat,
     /// The median-split BVH (axis cycling per level).
     Median,
     /// The binned-SAH BVH.
@@ -41,9 +45,10 @@ pub enum AccelKind {
 
 impl AccelKind {
     /// Every kind, in the order the benchmark reports them.
-    pub const ALL: [AccelKind; 4] = [
+    pub const ALL: [AccelKind; 5] = [
         AccelKind::Auto,
         AccelKind::None,
+        AccelKind::Flat,
         AccelKind::Median,
         AccelKind::Sah,
     ];
@@ -52,6 +57,7 @@ impl AccelKind {
         match self {
             AccelKind::Auto => "auto",
             AccelKind::None => "none",
+            AccelKind::Flat => "flat",
             AccelKind::Median => "median",
             AccelKind::Sah => "sah",
         }
@@ -70,10 +76,11 @@ impl std::str::FromStr for AccelKind {
         match s {
             "auto" => Ok(AccelKind::Auto),
             "none" => Ok(AccelKind::None),
+            "flat" => Ok(AccelKind::Flat),
             "median" => Ok(AccelKind::Median),
             "sah" => Ok(AccelKind::Sah),
             other => Err(format!(
-                "unknown accelerator '{other}' (expected auto, none, median or sah)"
+                "unknown accelerator '{other}' (expected auto, none, flat, median or sah)"
             )),
         }
     }
@@ -87,7 +94,7 @@ impl std::str::FromStr for AccelKind {
 /// (its root box rejects the rays that miss everything). In front of a quad filling the view, so
 /// that every ray hits, the list was up to 1.2× faster from 3 to 6 primitives, they tied at 7, and
 /// the tree won from 8 on (0.91× the list's time at 8, 0.73× at 12, 0.27× at 64).
-pub const AUTO_MIN_PRIMITIVES: usize = 8;
+pub const AUTO_MIN_PRIMITIVES: usize = 16;
 
 /// The built accelerator.
 #[derive(Debug, Clone)]
@@ -106,7 +113,10 @@ impl Accel {
         }
         match kind {
             AccelKind::None => Accel::List,
-            AccelKind::Auto if prims.len() < AUTO_MIN_PRIMITIVES => Accel::List,
+            AccelKind::Flat => Accel::Bvh(Bvh::build_flat(prims)),
+            AccelKind::Auto if prims.len() < AUTO_MIN_PRIMITIVES => {
+                Accel::Bvh(Bvh::build_flat(prims))
+            }
             AccelKind::Median => Accel::Bvh(Bvh::build_median(prims, leaf_size)),
             AccelKind::Auto | AccelKind::Sah => Accel::Bvh(Bvh::build_sah(prims, leaf_size)),
         }

@@ -129,16 +129,29 @@ fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
         } else {
             &[1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 16, 24, 32, 48, 64]
         };
-        let header = vec!["prims", "scene", "none_ms", "sah_ms", "sah/none"];
+        let header = vec![
+            "prims",
+            "scene",
+            "none_ms",
+            "flat_ms",
+            "sah_ms",
+            "flat/none",
+            "sah/flat",
+        ];
         let mut rows = Vec::new();
         for (backdrop, name) in [(false, "sparse"), (true, "backdrop")] {
-            for (n, none, sah) in crossover(sizes, backdrop, runs, leaf_size) {
+            for (n, [none, flat, sah]) in crossover(sizes, backdrop, runs, leaf_size) {
+                let ratio = |a: Duration, b: Duration| {
+                    format!("{:.2}", a.as_secs_f64() / b.as_secs_f64().max(1e-12))
+                };
                 rows.push(vec![
                     n.to_string(),
                     name.to_string(),
                     format!("{:.3}", ms(none)),
+                    format!("{:.3}", ms(flat)),
                     format!("{:.3}", ms(sah)),
-                    format!("{:.2}", sah.as_secs_f64() / none.as_secs_f64().max(1e-12)),
+                    ratio(flat, none),
+                    ratio(sah, flat),
                 ]);
             }
         }
