@@ -359,7 +359,8 @@ pub struct TableOptions {
     /// Folder of the bundled scenes.
     pub scenes_dir: PathBuf,
     pub leaf_size: usize,
-    /// Rows with `none` whose renders are estimated to take longer than this are skipped.
+    /// Rows with `none` or `flat` whose renders are estimated to take longer than this are
+    /// skipped.
     pub none_limit: Duration,
     /// How long to trace sample pixels for that estimate.
     pub estimate_budget: Duration,
@@ -476,7 +477,9 @@ fn table_row(
         rays: 0,
         memory: accel.memory_bytes() + primitive_bytes(scene),
     };
-    if matches!(accel, Accel::List) && scene.primitives.len() > 64 {
+    // Without a tree, every ray tests every primitive: large scenes are estimated first.
+    let treeless = matches!(accel, Accel::List) || built == "flat";
+    if treeless && scene.primitives.len() > 64 {
         let estimate = estimate_render(scene, &accel, &render_options, options.estimate_budget)
             * options.runs as u32;
         if estimate > options.none_limit {

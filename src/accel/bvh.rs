@@ -746,6 +746,13 @@ impl Bvh {
         (acc.cmple(exit).bitmask() & 3, acc.x, acc.y)
     }
 
+    /// The blocks of leaf `n` (which starts at a multiple of four).
+    #[inline(always)]
+    fn leaf_blocks(&self, n: NodeRef) -> &[Block] {
+        let start = n.index as usize;
+        &self.blocks[start / 4..(start + n.count as usize).div_ceil(4)]
+    }
+
     /// The primitives of leaf `n`.
     fn leaf(&self, n: NodeRef) -> impl Iterator<Item = u32> + '_ {
         let start = n.index as usize;
@@ -782,8 +789,8 @@ impl Bvh {
     /// lower index: such a primitive may also hit at exactly `best.t`, so its bound is the next
     /// float up.
     ///
-    /// Triangles are tested four at a time under the loosest bound, `next_float_up(best.t)`; each
-    /// lane hit is then held to its own bound, as the scalar test would have been (a lane's `t`
+    /// Blocks are tested four lanes at a time under the loosest bound, `next_float_up(best.t)`;
+    /// each lane hit is then held to its own bound, as the scalar test would have been (a lane's `t`
     /// does not depend on the bound it was tested under).
     #[inline(always)]
     fn leaf_closest(
@@ -795,7 +802,6 @@ impl Bvh {
         best: &mut Best,
     ) {
         let start = n.index as usize;
-        let end = start + n.count as usize;
         let bound = |p: u32, best: &Best| {
             if p < best.index && best.index != Best::NONE {
                 next_float_up(best.t)
@@ -803,8 +809,9 @@ impl Bvh {
                 best.t
             }
         };
-        for base in (start..end).step_by(4) {
-            let h = self.blocks[base / 4].intersect(r4, next_float_up(best.t));
+        for (j, block) in self.leaf_blocks(n).iter().enumerate() {
+            let base = start + 4 * j;
+            let h = block.intersect(r4, next_float_up(best.t));
             let scalar = h.scalar;
             let mut lanes = h.hit | scalar;
             while lanes != 0 {
@@ -841,9 +848,9 @@ impl Bvh {
         blocks: &mut impl FnMut(u32) -> bool,
     ) -> bool {
         let start = n.index as usize;
-        let end = start + n.count as usize;
-        for base in (start..end).step_by(4) {
-            let h = self.blocks[base / 4].intersect(r4, t_max);
+        for (j, block) in self.leaf_blocks(n).iter().enumerate() {
+            let base = start + 4 * j;
+            let h = block.intersect(r4, t_max);
             let scalar = h.scalar;
             let mut lanes = h.hit | scalar;
             while lanes != 0 {

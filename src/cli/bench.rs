@@ -25,7 +25,7 @@ use super::{exit_code, values};
     about = "Benchmarks. Without options: \"Table 1\", six scenes (the bundled example and demo, \
              sphere grids from 8k to 1.2M triangles) with point and area lights, rendered with \
              every --accel mode.",
-    after_help = "Timings are medians of --runs runs. Rows with --accel none whose renders are \
+    after_help = "Timings are medians of --runs runs. Rows with --accel none or flat whose renders are \
                   estimated (from a short sample) to take longer than --none-limit seconds in all \
                   are skipped and show the estimate."
 )]
@@ -63,7 +63,7 @@ struct BenchCli {
     /// Folder holding example.json and demo.json (default: ./scenes, else the source tree's).
     #[arg(long)]
     scenes: Option<PathBuf>,
-    /// Skip `none` rows estimated to take longer than this many seconds (at most 1 with --quick).
+    /// Skip `none` and `flat` rows estimated to take longer than this many seconds (at most 1 with --quick).
     #[arg(long, default_value_t = 60.0)]
     none_limit: f64,
 }
