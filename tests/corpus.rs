@@ -12,8 +12,12 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Component, Path, PathBuf};
 
+use raytracer::film::Film;
+use raytracer::integrator::{TraceOptions, DEFAULT_CUTOFF};
+use raytracer::math::Vec3;
+use raytracer::metric::{mse, Region};
 use raytracer::render::{render, RenderOptions};
-use raytracer::scene::{load, LoadOptions};
+use raytracer::scene::{load, LoadOptions, Scene, SceneError};
 
 fn corpus_dir() -> Option<PathBuf> {
     let dir = match std::env::var_os("RAYTRACER_CORPUS") {
@@ -83,6 +87,21 @@ fn base_for(corpus: &Path, reference: &str, asset: &str) -> Option<PathBuf> {
     Some(corpus.join(base))
 }
 
+/// Loads the scene of `e` at `width` pixels wide, its assets found through the manifest.
+fn load_entry(dir: &Path, e: &Entry, width: u32) -> Result<Scene, SceneError> {
+    let asset_dirs: Vec<PathBuf> = e
+        .refs
+        .iter()
+        .filter_map(|(r, a)| base_for(dir, r, a))
+        .collect();
+    let options = LoadOptions {
+        width: Some(width),
+        asset_dirs,
+        ..LoadOptions::default()
+    };
+    load(&dir.join(&e.file), &options)
+}
+
 #[test]
 fn every_corpus_scene_renders_or_fails_cleanly() {
     let Some(dir) = corpus_dir() else {
@@ -107,19 +126,8 @@ fn every_corpus_scene_renders_or_fails_cleanly() {
         if assets_present {
             complete += 1;
         }
-        let asset_dirs: Vec<PathBuf> = e
-            .refs
-            .iter()
-            .filter_map(|(r, a)| base_for(&dir, r, a))
-            .collect();
-        let options = LoadOptions {
-            width: Some(64),
-            asset_dirs,
-            ..LoadOptions::default()
-        };
-        let path = dir.join(&e.file);
         let result = catch_unwind(AssertUnwindSafe(|| {
-            let scene = load(&path, &options)?;
+            let scene = load_entry(&dir, e, 64)?;
             let out = render(
                 &scene,
                 &RenderOptions {
@@ -301,4 +309,61 @@ fn compare_with_expected(outcomes: &BTreeMap<String, Outcome>) {
         "worse than {EXPECTED} (rewrite it with RAYTRACER_UPDATE_CORPUS=1 if intended):\n{}",
         worse.join("\n")
     );
+}
+
+/// The command line's default work skipping (reflection and refraction rays traced down to a
+/// weight of 1/255, `--adc-bailout`; `--no-skip` turns it off) keeps every corpus scene that
+/// renders within MSE 10⁻⁵ of its full-work render: the pictures at 64 pixels wide, one sample,
+/// each file's own bounce count, compared as the default tone map shows them (linear, clamped to
+/// [0, 1]).
+#[test]
+fn the_default_cutoff_keeps_every_corpus_scene_within_mse_1e5() {
+    let Some(dir) = corpus_dir() else {
+        eprintln!("corpus not found next to the repository; set RAYTRACER_CORPUS to run this test");
+        return;
+    };
+    let shown = |f: &Film| {
+        let pixels = f
+            .pixels
+            .iter()
+            .map(|c| c.clamp(Vec3::ZERO, Vec3::ONE))
+            .collect();
+        Film::from_pixels(f.width, f.height, pixels)
+    };
+    let (mut compared, mut rays_full, mut rays_skip) = (0usize, 0u64, 0u64);
+    let mut worst = (0.0f64, String::new());
+    for e in &read_manifest(&dir) {
+        let Ok(scene) = load_entry(&dir, e, 64) else {
+            continue;
+        };
+        let run = |cutoff| {
+            let options = RenderOptions {
+                trace: TraceOptions {
+                    cutoff,
+                    ..TraceOptions::default()
+                },
+                ..RenderOptions::default()
+            };
+            render(&scene, &options).unwrap()
+        };
+        let (full, skip) = (run(None), run(Some(DEFAULT_CUTOFF)));
+        let (a, b) = (shown(&full.film), shown(&skip.film));
+        let e_mse = mse(&a, &b, Region::full(a.width, a.height));
+        assert!(
+            e_mse <= 1e-5,
+            "{}: MSE {e_mse} with the default cut-off",
+            e.file
+        );
+        if e_mse > worst.0 {
+            worst = (e_mse, e.file.clone());
+        }
+        compared += 1;
+        rays_full += full.counts.total();
+        rays_skip += skip.counts.total();
+    }
+    println!(
+        "default cut-off: {compared} corpus scenes, largest MSE {:.2e} ({}), {rays_skip} of {rays_full} rays",
+        worst.0, worst.1
+    );
+    assert!(compared >= 150, "only {compared} corpus scenes rendered");
 }

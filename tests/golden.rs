@@ -210,3 +210,51 @@ fn golden_scenes_render_identically_on_any_thread_count() {
         );
     }
 }
+
+/// Largest MSE (displayed 8-bit values in [0, 1]) the command line's default work skipping may
+/// add to a scene's full-work render (`docs/adaptive.md`).
+const MAX_SKIP_MSE: f64 = 1e-5;
+
+/// The command line traces reflection and refraction rays only down to a weight of 1/255
+/// (`--adc-bailout`, on unless `--no-skip`): on every bundled scene that keeps the picture within
+/// [`MAX_SKIP_MSE`] of tracing every ray. A cut-off that skips every secondary ray must break that
+/// bound somewhere, so the comparison is not blind.
+#[test]
+fn the_default_cutoff_keeps_every_bundled_scene_within_its_bound() {
+    let with_cutoff = |scene: &Scene, cutoff: Option<f32>| {
+        let out = render(
+            scene,
+            &RenderOptions {
+                spp: SPP,
+                trace: raytracer::integrator::TraceOptions {
+                    cutoff,
+                    ..Default::default()
+                },
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        (quantised(&out.film, scene.exposure), out.counts.total())
+    };
+    let (mut rays_full, mut rays_skip) = (0u64, 0u64);
+    let mut worst_without_secondary = 0.0f64;
+    for path in scenes() {
+        let scene = load_small(&path);
+        let (full, n_full) = with_cutoff(&scene, None);
+        let (skip, n_skip) = with_cutoff(&scene, Some(raytracer::integrator::DEFAULT_CUTOFF));
+        let (none, _) = with_cutoff(&scene, Some(1.0));
+        let region = Region::full(full.width, full.height);
+        let e = mse(&full, &skip, region);
+        println!(
+            "{}: MSE {e:.2e}, rays {n_skip} of {n_full}",
+            path.file_name().unwrap().to_string_lossy()
+        );
+        assert!(e <= MAX_SKIP_MSE, "{}: MSE {e}", path.display());
+        rays_full += n_full;
+        rays_skip += n_skip;
+        worst_without_secondary = worst_without_secondary.max(mse(&full, &none, region));
+    }
+    println!("all bundled scenes: {rays_skip} of {rays_full} rays with the cut-off");
+    assert!(rays_skip < rays_full);
+    assert!(worst_without_secondary > MAX_SKIP_MSE);
+}

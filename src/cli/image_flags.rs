@@ -47,9 +47,13 @@ pub(crate) struct ImageFlags {
     #[arg(long)]
     pub adaptive_lights: bool,
     /// Skip reflection/refraction rays whose accumulated weight is below X (POV-Ray's
-    /// adc_bailout; 1/255 = 0.0039 is one 8-bit step).
+    /// adc_bailout). Default: 1/255 = 0.0039, one 8-bit step (0 traces every ray).
     #[arg(long, value_name = "X", value_parser = values::unit_interval_f32)]
     pub adc_bailout: Option<f32>,
+    /// Trace every ray the scene asks for: no --adc-bailout cut-off (the full-work render the
+    /// default is measured against; see docs/adaptive.md).
+    #[arg(long, conflicts_with_all = ["adc_bailout", "adaptive_lights"])]
+    pub no_skip: bool,
     /// Seed for every random number (the image is a pure function of the scene, options and seed).
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -125,7 +129,14 @@ impl ImageFlags {
                 light_method: self.sampler,
                 light_samples: scene.light_samples,
                 adaptive_lights: self.adaptive_lights,
-                cutoff: self.adc_bailout,
+                cutoff: if self.no_skip {
+                    None
+                } else {
+                    Some(
+                        self.adc_bailout
+                            .unwrap_or(crate::integrator::DEFAULT_CUTOFF),
+                    )
+                },
             },
             integrator: Some(integrator),
             ..RenderOptions::default()

@@ -38,10 +38,12 @@
 //!   the probes disagree, get all `n` rays. This is POV-Ray's `adaptive` area-light idea (test a
 //!   coarse set first, refine where it disagrees) cut to one level; it misses occluders that fit
 //!   between the probes' rays.
-//! - [`TraceOptions::cutoff`] (opt-in): a reflection or refraction ray whose accumulated weight
-//!   (the product of the `kr + kt·F` and `kt·(1 − F)` factors down the tree) is below the cut-off
-//!   is not traced, as POV-Ray's `adc_bailout` does; at 1/255 a branch then cannot change an 8-bit
-//!   pixel unless its radiance is above 1.
+//! - [`TraceOptions::cutoff`]: a reflection or refraction ray whose accumulated weight (the
+//!   product of the `kr + kt·F` and `kt·(1 − F)` factors down the tree) is below the cut-off is not
+//!   traced, as POV-Ray's `adc_bailout` does; at 1/255 a branch then cannot change an 8-bit pixel
+//!   unless its radiance is above 1. The command line sets it to
+//!   [`DEFAULT_CUTOFF`](super::DEFAULT_CUTOFF) unless `--no-skip` (the library's default traces
+//!   every ray).
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
