@@ -460,3 +460,46 @@ fn a_closed_standard_output_is_not_a_panic() {
         }
     }
 }
+
+/// The default render skips reflection and refraction rays of weight below 1/255; `--no-skip`
+/// and `--adc-bailout 0` both trace every ray (the same bytes) and trace more rays than the
+/// default on a scene of glass; `--no-skip` with a cut-off is a usage error.
+#[test]
+fn no_skip_traces_every_ray_the_default_skips_faint_ones() {
+    let dir = tempfile::tempdir().unwrap();
+    let glass = common::repo().join("scenes/glass.json");
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let o = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+            .args([glass.as_os_str(), out.as_os_str()])
+            .args(["--width", "48", "--threads", "1"])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        let line = stderr(&o);
+        let rays: u64 = line
+            .split(" rays")
+            .next()
+            .and_then(|s| s.rsplit(' ').next())
+            .and_then(|n| n.parse().ok())
+            .unwrap_or_else(|| panic!("no ray count in: {line}"));
+        (std::fs::read(out).unwrap(), rays)
+    };
+    let (default, default_rays) = run("default.exr", &[]);
+    let (full, full_rays) = run("full.exr", &["--no-skip"]);
+    let (zero, zero_rays) = run("zero.exr", &["--adc-bailout", "0"]);
+    assert_eq!(full, zero);
+    assert_eq!(full_rays, zero_rays);
+    assert!(default_rays < full_rays, "{default_rays} vs {full_rays}");
+    assert_ne!(default, full);
+    let o = raytracer(&[
+        &glass,
+        &dir.path().join("x.png"),
+        &"--no-skip",
+        &"--adc-bailout",
+        &"0.1",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--no-skip"), "{}", stderr(&o));
+}
