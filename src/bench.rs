@@ -788,6 +788,8 @@ pub struct Throughput {
     pub build: Duration,
     pub build_median_split: Duration,
     pub accel_bytes: usize,
+    /// Of `accel_bytes`, the leaves' (primitive order and SIMD blocks).
+    pub leaf_bytes: usize,
     pub primitive_bytes: usize,
     pub nodes: usize,
     pub depth: usize,
@@ -859,6 +861,7 @@ pub fn throughput(
         build,
         build_median_split,
         accel_bytes: accel.memory_bytes(),
+        leaf_bytes: accel.leaf_bytes(),
         primitive_bytes: primitive_bytes(&scene),
         nodes: stats.nodes,
         depth: stats.depth,

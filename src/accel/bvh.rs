@@ -696,12 +696,23 @@ impl Bvh {
         usize::from(self.root.is_some()) + 2 * self.pairs.len()
     }
 
-    /// Bytes held: the nodes, the primitive order, the triangle blocks and the unbounded list.
+    /// Bytes held: the nodes, the leaves (primitive order and blocks) and the unbounded list.
     pub fn memory_bytes(&self) -> usize {
         std::mem::size_of::<Bvh>()
-            + self.pairs.capacity() * std::mem::size_of::<NodePair>()
-            + self.blocks.capacity() * std::mem::size_of::<Block>()
-            + (self.order.capacity() + self.unbounded.capacity()) * std::mem::size_of::<u32>()
+            + self.node_bytes()
+            + self.leaf_bytes()
+            + self.unbounded.capacity() * std::mem::size_of::<u32>()
+    }
+
+    /// Bytes of the interior nodes.
+    pub fn node_bytes(&self) -> usize {
+        self.pairs.capacity() * std::mem::size_of::<NodePair>()
+    }
+
+    /// Bytes of the leaves: the primitive order and the SIMD blocks.
+    pub fn leaf_bytes(&self) -> usize {
+        self.blocks.capacity() * std::mem::size_of::<Block>()
+            + self.order.capacity() * std::mem::size_of::<u32>()
     }
 
     /// The primitives kept outside the tree (unbounded shapes), in index order.

@@ -122,11 +122,19 @@ impl Accel {
         }
     }
 
-    /// Bytes the accelerator holds beyond the primitives (nodes and primitive order).
+    /// Bytes the accelerator holds beyond the primitives (nodes, primitive order, leaf blocks).
     pub fn memory_bytes(&self) -> usize {
         match self {
             Accel::List => 0,
             Accel::Bvh(b) => b.memory_bytes(),
+        }
+    }
+
+    /// Of [`Accel::memory_bytes`], the bytes of the leaves (primitive order and leaf blocks).
+    pub fn leaf_bytes(&self) -> usize {
+        match self {
+            Accel::List => 0,
+            Accel::Bvh(b) => b.leaf_bytes(),
         }
     }
 

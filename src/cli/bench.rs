@@ -296,7 +296,8 @@ fn print_throughput(t: &Throughput, threads: usize) {
     let tris = t.triangles as f64;
     outln!(
         "  G={} S={}: {} triangles; SAH build {:.1} ms (median split {:.1} ms); {} nodes, depth {} \
-         (stack {}); memory {:.1} B/triangle = BVH {:.1} + primitive records {:.1}",
+         (stack {}); memory {:.1} B/triangle = BVH {:.1} (nodes {:.1}, leaves {:.1}) + primitive \
+         records {:.1}",
         t.g,
         t.s,
         t.triangles,
@@ -307,6 +308,8 @@ fn print_throughput(t: &Throughput, threads: usize) {
         STACK_SIZE,
         (t.accel_bytes + t.primitive_bytes) as f64 / tris,
         t.accel_bytes as f64 / tris,
+        (t.accel_bytes - t.leaf_bytes) as f64 / tris,
+        t.leaf_bytes as f64 / tris,
         t.primitive_bytes as f64 / tris,
     );
     for s in &t.sets {
