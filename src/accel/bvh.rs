@@ -541,6 +541,18 @@ impl Block {
     }
 }
 
+/// The set bits of `mask`, lowest first.
+#[inline(always)]
+fn lanes(mut mask: u32) -> impl Iterator<Item = usize> {
+    std::iter::from_fn(move || {
+        (mask != 0).then(|| {
+            let l = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            l
+        })
+    })
+}
+
 /// The kinds of primitive a leaf keeps apart, in their order there.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Kind {
@@ -824,10 +836,7 @@ impl Bvh {
             let base = start + 4 * j;
             let h = block.intersect(r4, next_float_up(best.t));
             let scalar = h.scalar;
-            let mut lanes = h.hit | scalar;
-            while lanes != 0 {
-                let l = lanes.trailing_zeros() as usize;
-                lanes &= lanes - 1;
+            for l in lanes(h.hit | scalar) {
                 let p = self.order[base + l];
                 let b = bound(p, best);
                 let c = if scalar & (1 << l) != 0 {
@@ -863,10 +872,7 @@ impl Bvh {
             let base = start + 4 * j;
             let h = block.intersect(r4, t_max);
             let scalar = h.scalar;
-            let mut lanes = h.hit | scalar;
-            while lanes != 0 {
-                let l = lanes.trailing_zeros() as usize;
-                lanes &= lanes - 1;
+            for l in lanes(h.hit | scalar) {
                 let p = self.order[base + l];
                 let hit = scalar & (1 << l) == 0
                     || prims[p as usize]

@@ -15,3 +15,52 @@ pub mod triangle4;
 pub use ray4::{Hits4, Ray4};
 pub use sphere4::Sphere4;
 pub use triangle4::Triangle4;
+
+/// What the kernels' tests share: a small generator, and the comparison with the scalar twin.
+#[cfg(test)]
+mod twin {
+    use super::Hits4;
+    use crate::geometry::{Candidate, Shape};
+    use crate::math::Vec3;
+    use crate::ray::PreparedRay;
+
+    /// Xorshift64: uniform `f32` in `[0, 1)`.
+    pub struct Rng(pub u64);
+
+    impl Rng {
+        pub fn next(&mut self) -> f32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 40) as f32 / (1u64 << 24) as f32
+        }
+
+        /// A point of the cube of side `s` centred on the origin.
+        pub fn vec(&mut self, s: f32) -> Vec3 {
+            Vec3::new(self.next() - 0.5, self.next() - 0.5, self.next() - 0.5) * s
+        }
+    }
+
+    /// Asserts that every lane of `h` not left to the scalar test holds, bit for bit, what the
+    /// scalar twin gives for `shapes[l]` under `t_max`.
+    pub fn assert_twin(h: &Hits4, shapes: &[Shape; 4], pr: &PreparedRay, t_max: f32) {
+        assert_eq!(h.hit & h.scalar, 0);
+        let bits = |c: Option<Candidate>| c.map(|c| [c.t, c.aux[0], c.aux[1]].map(f32::to_bits));
+        for (l, shape) in shapes.iter().enumerate() {
+            if h.scalar & (1 << l) != 0 {
+                continue;
+            }
+            let want = shape.intersect_prepared(pr, t_max);
+            let got = (h.hit & (1 << l) != 0).then(|| Candidate {
+                t: h.t[l],
+                aux: [h.b1[l], h.b2[l]],
+            });
+            assert_eq!(
+                bits(got),
+                bits(want),
+                "lane {l} of {shapes:?}, ray {:?}, t_max {t_max}",
+                pr.ray
+            );
+        }
+    }
+}

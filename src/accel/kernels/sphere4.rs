@@ -88,43 +88,19 @@ impl Sphere4 {
 
 #[cfg(test)]
 mod tests {
+    use super::super::twin::{assert_twin, Rng};
     use super::*;
-    use crate::geometry::{Candidate, Shape};
+    use crate::geometry::Shape;
     use crate::math::Vec3;
     use crate::ray::{PreparedRay, Ray};
 
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 40) as f32 / (1u64 << 24) as f32
-        }
-        fn vec(&mut self, s: f32) -> Vec3 {
-            Vec3::new(self.next() - 0.5, self.next() - 0.5, self.next() - 0.5) * s
-        }
-    }
-
+    /// Every lane against the scalar test, bit for bit; returns how many lanes were hit.
     fn agree(spheres: &[Sphere; 4], ray: &Ray, t_max: f32) -> u32 {
         let block = Sphere4::new([0, 1, 2, 3].map(|l| Some(&spheres[l])));
         let pr = PreparedRay::new(ray);
         let h = block.intersect(&Ray4::new(&pr), t_max);
         assert_eq!(h.scalar, 0);
-        for (l, s) in spheres.iter().enumerate() {
-            let want = Shape::Sphere(s.clone()).intersect_prepared(&pr, t_max);
-            let got = (h.hit & (1 << l) != 0).then(|| Candidate {
-                t: h.t[l],
-                aux: [0.0; 2],
-            });
-            let bits =
-                |c: Option<Candidate>| c.map(|c| [c.t, c.aux[0], c.aux[1]].map(f32::to_bits));
-            assert_eq!(
-                bits(got),
-                bits(want),
-                "lane {l} of {spheres:?}, ray {ray:?}, t_max {t_max}"
-            );
-        }
+        assert_twin(&h, &spheres.clone().map(Shape::Sphere), &pr, t_max);
         h.hit.count_ones()
     }
 

@@ -126,23 +126,11 @@ impl Triangle4 {
 
 #[cfg(test)]
 mod tests {
+    use super::super::twin::{assert_twin, Rng};
     use super::*;
-    use crate::geometry::{Candidate, Shape};
+    use crate::geometry::Shape;
     use crate::math::Vec3;
     use crate::ray::{PreparedRay, Ray};
-
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 40) as f32 / (1u64 << 24) as f32
-        }
-        fn vec(&mut self, s: f32) -> Vec3 {
-            Vec3::new(self.next() - 0.5, self.next() - 0.5, self.next() - 0.5) * s
-        }
-    }
 
     fn tri(p: [Vec3; 3]) -> Triangle {
         Triangle {
@@ -158,24 +146,7 @@ mod tests {
         let block = Triangle4::new([0, 1, 2, 3].map(|l| Some(&tris[l])));
         let pr = PreparedRay::new(ray);
         let h = block.intersect(&Ray4::new(&pr), t_max);
-        assert_eq!(h.hit & h.scalar, 0);
-        for (l, t) in tris.iter().enumerate() {
-            if h.scalar & (1 << l) != 0 {
-                continue;
-            }
-            let want = Shape::Triangle(t.clone()).intersect_prepared(&pr, t_max);
-            let got = (h.hit & (1 << l) != 0).then(|| Candidate {
-                t: h.t[l],
-                aux: [h.b1[l], h.b2[l]],
-            });
-            let bits =
-                |c: Option<Candidate>| c.map(|c| [c.t, c.aux[0], c.aux[1]].map(f32::to_bits));
-            assert_eq!(
-                bits(got),
-                bits(want),
-                "lane {l} of {tris:?}, ray {ray:?}, t_max {t_max}"
-            );
-        }
+        assert_twin(&h, &tris.clone().map(Shape::Triangle), &pr, t_max);
         (h.hit.count_ones(), h.scalar.count_ones())
     }
 
