@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
-use crate::accel::{Accel, AccelKind, AUTO_MIN_PRIMITIVES};
+use crate::accel::{Accel, AccelKind};
 use crate::camera::{Camera, Handedness};
 use crate::files::shown;
 use crate::geometry::{Mesh, MeshUv, Primitive, Shape, Sphere, Triangle};
@@ -450,10 +450,9 @@ fn table_row(
     let (build, accel) = timed(options.runs, || {
         Accel::build(&scene.primitives, kind, options.leaf_size)
     });
-    let built = match (&accel, kind) {
+    let built = match (&accel, kind.resolved(scene.primitives.len())) {
         (Accel::Bvh(_), AccelKind::Median) => "median",
         (Accel::Bvh(_), AccelKind::Flat) => "flat",
-        (Accel::Bvh(_), AccelKind::Auto) if scene.primitives.len() < AUTO_MIN_PRIMITIVES => "flat",
         (Accel::Bvh(_), _) => "sah",
         (a, _) => built_name(a),
     };

@@ -55,8 +55,7 @@ impl PreparedRay {
         let d = ray.dir;
         let inv_dir = Vec3A::ONE / Vec3A::from(d);
         let kz = crate::math::max_dimension(d.abs());
-        let kx = if kz == 2 { 0 } else { kz + 1 };
-        let ky = if kx == 2 { 0 } else { kx + 1 };
+        let [kx, ky, _] = axis_permutation(kz);
         let (dx, dy, dz) = (d[kx], d[ky], d[kz]);
         PreparedRay {
             ray: *ray,
@@ -69,6 +68,15 @@ impl PreparedRay {
             shear_ok: dz != 0.0 && dz.is_finite(),
         }
     }
+}
+
+/// The watertight triangle test's axis permutation `[kx, ky, kz]` for the ray's largest direction
+/// axis `kz`: the other two in cyclic order, so that the permutation keeps the winding.
+#[inline]
+pub fn axis_permutation(kz: usize) -> [usize; 3] {
+    let kx = if kz == 2 { 0 } else { kz + 1 };
+    let ky = if kx == 2 { 0 } else { kx + 1 };
+    [kx, ky, kz]
 }
 
 /// Where a ray meets a surface.

@@ -575,16 +575,15 @@ fn kind(p: &Primitive) -> Kind {
 fn pack_leaves(prims: &[Primitive], nodes: &mut [Node], order: &[u32]) -> (Vec<u32>, Vec<Block>) {
     let mut packed = Vec::with_capacity(order.len());
     for node in nodes.iter_mut().filter(|n| n.count > 0) {
+        // `packed` stays a multiple of four long between kinds and between leaves.
         let leaf = &order[node.index as usize..][..node.count as usize];
-        packed.resize(packed.len().next_multiple_of(4), PAD);
         node.index = packed.len() as u32;
         for k in [Kind::Triangle, Kind::Sphere, Kind::Other] {
-            packed.resize(packed.len().next_multiple_of(4), PAD);
             packed.extend(leaf.iter().filter(|&&p| kind(&prims[p as usize]) == k));
+            packed.resize(packed.len().next_multiple_of(4), PAD);
         }
         node.count = packed.len() as u32 - node.index;
     }
-    packed.resize(packed.len().next_multiple_of(4), PAD);
     let blocks = packed
         .chunks_exact(4)
         .map(|c| {

@@ -64,6 +64,17 @@ impl AccelKind {
     }
 }
 
+impl AccelKind {
+    /// What this kind builds for `primitives` primitives: `auto` resolved to `flat` or `sah`.
+    pub fn resolved(self, primitives: usize) -> AccelKind {
+        match self {
+            AccelKind::Auto if primitives < AUTO_MIN_PRIMITIVES => AccelKind::Flat,
+            AccelKind::Auto => AccelKind::Sah,
+            kind => kind,
+        }
+    }
+}
+
 impl std::fmt::Display for AccelKind {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())
@@ -86,14 +97,15 @@ impl std::str::FromStr for AccelKind {
     }
 }
 
-/// Below this many primitives `auto` tests them all: a BVH's node tests cost more than they save.
+/// Below this many primitives `auto` builds `flat` (one leaf, every primitive tested in SIMD
+/// blocks): a BVH's node tests cost more than they save.
 ///
-/// Measured with `raytracer bench --crossover --runs 21`, which times the ray queries (camera rays
-/// at 320×240, shadow rays, random secondary rays; one thread, medians) with `none` and `sah` on
-/// scenes of 1 to 64 random spheres and triangles. Scattered in space, the tree was never slower
-/// (its root box rejects the rays that miss everything). In front of a quad filling the view, so
-/// that every ray hits, the list was up to 1.2× faster from 3 to 6 primitives, they tied at 7, and
-/// the tree won from 8 on (0.91× the list's time at 8, 0.73× at 12, 0.27× at 64).
+/// Measured with `raytracer bench --crossover --runs 41`, which times the ray queries (camera rays
+/// at 320×240, shadow rays, random secondary rays; one thread, medians) with `none`, `flat` and
+/// `sah` on scenes of 1 to 64 random spheres and triangles, scattered in space or in front of a
+/// quad filling the view (so that every ray hits). `flat` was at or below `none` from 5 primitives
+/// on and about as fast as the tree up to 16; the tree won from 16 with the quad and from 32
+/// without (`docs/performance.md`, "The `auto` threshold").
 pub const AUTO_MIN_PRIMITIVES: usize = 16;
 
 /// The built accelerator.
@@ -111,12 +123,9 @@ impl Accel {
         if prims.len() >= u32::MAX as usize {
             return Accel::List;
         }
-        match kind {
+        match kind.resolved(prims.len()) {
             AccelKind::None => Accel::List,
             AccelKind::Flat => Accel::Bvh(Bvh::build_flat(prims)),
-            AccelKind::Auto if prims.len() < AUTO_MIN_PRIMITIVES => {
-                Accel::Bvh(Bvh::build_flat(prims))
-            }
             AccelKind::Median => Accel::Bvh(Bvh::build_median(prims, leaf_size)),
             AccelKind::Auto | AccelKind::Sah => Accel::Bvh(Bvh::build_sah(prims, leaf_size)),
         }

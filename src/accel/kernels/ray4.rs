@@ -30,14 +30,12 @@ pub struct Ray4 {
 impl Ray4 {
     #[inline(always)]
     pub fn new(r: &PreparedRay) -> Ray4 {
-        let kz = r.kz;
-        let kx = if kz == 2 { 0 } else { kz + 1 };
-        let ky = if kx == 2 { 0 } else { kx + 1 };
+        let axes = crate::ray::axis_permutation(r.kz);
         let o = r.ray.origin.to_array();
         let d: Vec3 = r.ray.dir;
         Ray4 {
-            axes: [kx, ky, kz],
-            origin_k: [kx, ky, kz].map(|k| Vec4::splat(o[k])),
+            axes,
+            origin_k: axes.map(|k| Vec4::splat(o[k])),
             shear: [r.shear.x, r.shear.y, r.shear.z].map(Vec4::splat),
             shear_ok: r.shear_ok,
             origin: o.map(Vec4::splat),
