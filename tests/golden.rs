@@ -13,6 +13,7 @@ use std::path::PathBuf;
 
 use common::repo;
 use raytracer::film::{to_rgb8, Film, ToneMap};
+use raytracer::integrator::TraceOptions;
 use raytracer::math::Vec3;
 use raytracer::metric::{flip_map, mean_flip, mse, Region};
 use raytracer::render::{render, RenderOptions};
@@ -45,16 +46,21 @@ fn load_small(path: &std::path::Path) -> Scene {
 
 /// The render as its 8-bit PNG would hold it, back in [0, 1].
 fn displayed(scene: &Scene) -> Film {
-    let film = render(
+    displayed_with(scene, TraceOptions::default()).0
+}
+
+/// [`displayed`] with `trace` options, and the rays the render traced.
+fn displayed_with(scene: &Scene, trace: TraceOptions) -> (Film, u64) {
+    let out = render(
         scene,
         &RenderOptions {
             spp: SPP,
+            trace,
             ..Default::default()
         },
     )
-    .unwrap()
-    .film;
-    quantised(&film, scene.exposure)
+    .unwrap();
+    (quantised(&out.film, scene.exposure), out.counts.total())
 }
 
 fn quantised(film: &Film, exposure: f32) -> Film {
@@ -222,19 +228,13 @@ const MAX_SKIP_MSE: f64 = 1e-5;
 #[test]
 fn the_default_cutoff_keeps_every_bundled_scene_within_its_bound() {
     let with_cutoff = |scene: &Scene, cutoff: Option<f32>| {
-        let out = render(
+        displayed_with(
             scene,
-            &RenderOptions {
-                spp: SPP,
-                trace: raytracer::integrator::TraceOptions {
-                    cutoff,
-                    ..Default::default()
-                },
+            TraceOptions {
+                cutoff,
                 ..Default::default()
             },
         )
-        .unwrap();
-        (quantised(&out.film, scene.exposure), out.counts.total())
     };
     let (mut rays_full, mut rays_skip) = (0u64, 0u64);
     let mut worst_without_secondary = 0.0f64;
