@@ -36,6 +36,11 @@ pub struct Material {
     /// Colour of the mirror reflection (a metal's `albedo`; white otherwise). The path tracer
     /// tints by it; Whitted reflection is untinted.
     pub mirror: Vec3,
+    /// Blinn-Phong exponent of the mirror's lobe: `INFINITY` for a perfect mirror, finite for a
+    /// rough one (a CGR material's `roughness`, through [`roughness_exponent`]). The path tracer
+    /// scatters into the lobe; Whitted reflection traces one ray per camera sample about a half
+    /// vector drawn from it.
+    pub mirror_exponent: f32,
     /// Radiance the surface emits (`emittance`, or an `emissive` material's colour × intensity).
     /// A sphere, triangle or quad with an emitting material is an area light.
     pub emission: Vec3,
@@ -55,6 +60,7 @@ impl Default for Material {
             eta: 1.0,
             texture: None,
             mirror: Vec3::ONE,
+            mirror_exponent: f32::INFINITY,
             emission: Vec3::ZERO,
         }
     }
@@ -89,10 +95,22 @@ pub fn highlight(cos: f32, exponent: f32) -> f32 {
     }
 }
 
+/// The Blinn-Phong exponent of a microfacet roughness `α` (a Beckmann slope deviation), `2/α² − 2`
+/// (Walter et al., "Microfacet Models for Refraction through Rough Surfaces", EGSR 2007, §5.2):
+/// `INFINITY` at `α = 0` (a perfect mirror), `0` at `α ≥ 1`.
+pub fn roughness_exponent(alpha: f32) -> f32 {
+    (2.0 / (alpha * alpha) - 2.0).max(0.0)
+}
+
 impl Material {
     /// Whether shadow rays pass (attenuated) through this material.
     pub fn is_transmissive(&self) -> bool {
         self.kt > 0.0
+    }
+
+    /// Whether the material has a mirror part, and it is rough.
+    pub fn has_rough_mirror(&self) -> bool {
+        self.kr > 0.0 && self.mirror_exponent.is_finite()
     }
 }
 

@@ -195,6 +195,10 @@ const CASES: &[(&str, &[&str])] = &[
     ("kd-negative.json", &["material.kd", "≥ 0"]),
     ("eta-zero-glass.json", &["material.eta", "> 0"]),
     (
+        "roughness-negative.json",
+        &["material.roughness", "finite number ≥ 0", "-0.2"],
+    ),
+    (
         "specular-exponent-negative.json",
         &["scene.shapes[0].material", "exponent", "≥ 0"],
     ),

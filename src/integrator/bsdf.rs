@@ -8,7 +8,9 @@
 //! with `ρd = kd·c`, `ρg = ks·specularcolor`, `e` = `specularexponent`, `θh` the angle between the
 //! shading normal and the half vector of the two directions, and the lobe weights
 //! - `r` = `reflectivity` (`kr`) of a reflective material, at most 1 (the mirror reflects the
-//!   colour `mirror`: a metal's `albedo`, else white);
+//!   colour `mirror`: a metal's `albedo`, else white). A rough mirror (a finite
+//!   `mirror_exponent`, from the material's `roughness`) is a normalised Blinn-Phong lobe of that
+//!   exponent in place of the delta: `r·mirror·N(e_m)·cos^e_m θh`;
 //! - `t` = the transmission `kt` of a refractive one (`isrefractive`), at most `1 − r`;
 //! - `s = 1 − r − t` for the surface's own diffuse and glossy reflection.
 //!
@@ -17,16 +19,19 @@
 //! for Blinn-Phong", 2009), which makes its directional albedo exactly 1 at normal incidence; it is
 //! lower at every other angle (checked by the tests here), so the lobe never reflects more than
 //! it receives. **Energy is conserved** by scaling `ρd` and `ρg` together so that
-//! `max over channels of (ρd + ρg) ≤ 1`, and the three lobe weights sum to one. Both smooth lobes
-//! are symmetric in the two directions (reciprocal); the mirror reflects about the geometric normal
+//! `max over channels of (ρd + ρg) ≤ 1`, and the three lobe weights sum to one. The smooth lobes
+//! and the rough mirror are symmetric in the two directions (reciprocal); the mirror reflects about the geometric normal
 //! and the dielectric splits by the exact Fresnel reflectance, refracting by Snell's law (total
 //! internal reflection included; no absorption). Sampling picks a lobe with the probability of its
-//! weight, so a mirror of reflectance `r` and a surface of weight `1 − r` stay unbiased together.
+//! weight, so a mirror of reflectance `r` and a surface of weight `1 − r` stay unbiased together;
+//! a direction drawn from any lobe that is not a delta carries the density of all of them (the
+//! one-sample mixture), which is what MIS against light samples needs.
 //!
 //! `ka` and the scene's ambient light belong to Whitted shading and are not used here.
 
 use crate::material::{highlight, Material};
 use crate::math::{fresnel_dielectric, orthonormal_basis, reflect, refract, Vec2, Vec3};
+use crate::sampling::blinn_phong_half_vector;
 
 use std::f32::consts::{FRAC_1_PI, PI};
 
@@ -62,6 +67,9 @@ pub struct Bsdf {
     norm: f32,
     /// Colour of the mirror lobe.
     tint: Vec3,
+    /// Exponent of the mirror lobe (`INFINITY`: a delta) and its normalisation.
+    mirror_exponent: f32,
+    mirror_norm: f32,
     /// Lobe weights, summing to 1.
     smooth: f32,
     mirror: f32,
@@ -115,6 +123,12 @@ impl Bsdf {
                 blinn_phong_norm(exponent)
             },
             tint: material.mirror,
+            mirror_exponent: material.mirror_exponent,
+            mirror_norm: if material.mirror_exponent.is_finite() {
+                blinn_phong_norm(material.mirror_exponent.max(0.0))
+            } else {
+                0.0
+            },
             smooth,
             mirror,
             glass,
@@ -127,18 +141,29 @@ impl Bsdf {
         }
     }
 
-    /// Whether the smooth lobes reflect anything: only then is light sampling worth a shadow ray.
-    pub fn has_smooth(&self) -> bool {
+    /// Whether the smooth lobes reflect anything.
+    fn smooth_reflects(&self) -> bool {
         self.smooth > 0.0 && (self.diffuse + self.glossy).max_element() > 0.0
     }
 
-    /// `f(wo, wi)` of the smooth lobes (delta lobes are 0 in every given direction), weighted by
-    /// their share `s`.
+    /// Whether the mirror lobe is a rough one (not a delta) and reflects anything.
+    fn rough_mirror(&self) -> bool {
+        self.mirror > 0.0 && self.mirror_exponent.is_finite() && self.tint.max_element() > 0.0
+    }
+
+    /// Whether a lobe that is not a delta reflects anything: only then is light sampling worth
+    /// a shadow ray.
+    pub fn has_non_delta(&self) -> bool {
+        self.smooth_reflects() || self.rough_mirror()
+    }
+
+    /// `f(wo, wi)` of the lobes that are not deltas (a delta is 0 in every given direction),
+    /// weighted by their shares.
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         self.eval_pdf(wo, wi).0
     }
 
-    /// The solid-angle density with which [`Bsdf::sample`] picks `wi` (its smooth lobes' share
+    /// The solid-angle density with which [`Bsdf::sample`] picks `wi` (the lobes' shares
     /// included).
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         self.eval_pdf(wo, wi).1
@@ -147,33 +172,52 @@ impl Bsdf {
     /// [`Bsdf::eval`] and [`Bsdf::pdf`] together, sharing the cosines and the half vector: a
     /// light sample needs both.
     pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
-        if !self.has_smooth() || wi.dot(self.ng) <= 0.0 || wo.dot(self.ng) <= 0.0 {
+        if !self.has_non_delta() || wi.dot(self.ng) <= 0.0 || wo.dot(self.ng) <= 0.0 {
             return (Vec3::ZERO, 0.0);
         }
         let (co, ci) = (self.n.dot(wo), self.n.dot(wi));
         if co <= 0.0 || ci <= 0.0 {
             return (Vec3::ZERO, 0.0);
         }
-        let mut f = self.diffuse * FRAC_1_PI;
-        let mut p = (1.0 - self.p_glossy) * ci * FRAC_1_PI;
-        if self.glossy != Vec3::ZERO {
-            let h = (wo + wi).normalize_or_zero();
-            let ch = self.n.dot(h).max(0.0);
-            let lobe = highlight(ch, self.exponent);
-            f += self.glossy * (self.norm * lobe);
-            let oh = wo.dot(h);
+        let h = (wo + wi).normalize_or_zero();
+        let (ch, oh) = (self.n.dot(h).max(0.0), wo.dot(h));
+        // The density of `wi` for half vectors drawn from a lobe of exponent `e`, whose value
+        // at `h` is `lobe` (the Jacobian of the reflection is 1/(4·wo·h)).
+        let lobe_pdf = |e: f32, lobe: f32| {
             if oh > 0.0 {
-                let pdf_h = (self.exponent + 1.0) / (2.0 * PI) * lobe;
-                p += self.p_glossy * pdf_h / (4.0 * oh);
+                (e + 1.0) / (2.0 * PI) * lobe / (4.0 * oh)
+            } else {
+                0.0
             }
+        };
+        let (mut f, mut p) = (Vec3::ZERO, 0.0);
+        if self.smooth_reflects() {
+            let mut fs = self.diffuse * FRAC_1_PI;
+            let mut ps = (1.0 - self.p_glossy) * ci * FRAC_1_PI;
+            if self.glossy != Vec3::ZERO {
+                let lobe = highlight(ch, self.exponent);
+                fs += self.glossy * (self.norm * lobe);
+                ps += self.p_glossy * lobe_pdf(self.exponent, lobe);
+            }
+            f = self.smooth * fs;
+            p = self.smooth * ps;
         }
-        (self.smooth * f, self.smooth * p)
+        if self.rough_mirror() {
+            let lobe = highlight(ch, self.mirror_exponent);
+            f += self.tint * (self.mirror * self.mirror_norm * lobe);
+            p += self.mirror * lobe_pdf(self.mirror_exponent, lobe);
+        }
+        (f, p)
     }
 
     /// A direction for `wo` from `u_lobe` (which lobe, and inside the dielectric which way) and
     /// `u` (where in the lobe); `None` where the path is absorbed.
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         if u_lobe < self.mirror {
+            if self.mirror_exponent.is_finite() {
+                let h = self.world(blinn_phong_half_vector(self.mirror_exponent, u));
+                return self.scattered(wo, 2.0 * wo.dot(h) * h - wo);
+            }
             return Some(BsdfSample {
                 dir: reflect(-wo, self.ng).normalize(),
                 weight: self.tint,
@@ -202,15 +246,12 @@ impl Bsdf {
                 delta: true,
             });
         }
-        if !self.has_smooth() {
+        if !self.smooth_reflects() {
             return None;
         }
         let v = ((u_lobe - self.mirror - self.glass) / self.smooth).clamp(0.0, 1.0);
         let wi = if v < self.p_glossy {
-            let cos_h = u.x.powf(1.0 / (self.exponent + 1.0));
-            let sin_h = (1.0 - cos_h * cos_h).max(0.0).sqrt();
-            let phi = 2.0 * PI * u.y;
-            let h = self.world(Vec3::new(sin_h * phi.cos(), sin_h * phi.sin(), cos_h));
+            let h = self.world(blinn_phong_half_vector(self.exponent, u));
             2.0 * wo.dot(h) * h - wo
         } else {
             // Cosine-weighted hemisphere (Malley's method).
@@ -218,6 +259,12 @@ impl Bsdf {
             let z = (1.0 - d.length_squared()).max(0.0).sqrt();
             self.world(Vec3::new(d.x, d.y, z))
         };
+        self.scattered(wo, wi)
+    }
+
+    /// The sample for a direction `wi` drawn from a lobe that is not a delta: weighted by the
+    /// density of all such lobes together; `None` where no lobe reflects that way.
+    fn scattered(&self, wo: Vec3, wi: Vec3) -> Option<BsdfSample> {
         let (f, pdf) = self.eval_pdf(wo, wi);
         if pdf <= 0.0 || !pdf.is_finite() {
             return None;
@@ -314,6 +361,12 @@ mod tests {
             material(0.7, 0.0, 1.0),
             material(0.0, 0.8, 30.0),
             material(0.5, 0.4, 7.0),
+            Material {
+                kr: 0.4,
+                mirror_exponent: 40.0,
+                mirror: Vec3::new(0.9, 0.8, 0.3),
+                ..material(0.5, 0.2, 3.0)
+            },
         ] {
             let b = Bsdf::new(&m, Vec3::new(0.9, 0.5, 0.2), n, n, true);
             for i in 0..50 {
@@ -329,58 +382,105 @@ mod tests {
     }
 
     /// The sampler draws from the density `pdf` reports: the mean of `weight` is the albedo, and
-    /// `pdf` integrates to the share of samples that leave in a smooth lobe.
+    /// `pdf` integrates to the share of samples that leave in a lobe that is not a delta; with a
+    /// perfect mirror and with a rough one.
     #[test]
     fn samples_follow_the_reported_density() {
-        let m = Material {
-            kr: 0.25,
-            ..material(0.5, 0.4, 12.0)
-        };
-        let b = Bsdf::new(&m, Vec3::ONE, Vec3::Z, Vec3::Z, true);
-        let wo = dir(0.6, 0.0);
-        let k = 256u32;
-        let (mut mean, mut mirror, mut smooth) = (0.0f64, 0, 0);
-        for i in 0..k {
-            for j in 0..k {
-                let u = Vec2::new((i as f32 + 0.5) / k as f32, (j as f32 + 0.5) / k as f32);
-                let u_lobe = ((i * 7919 + j * 104729) % 65536) as f32 / 65536.0;
-                if let Some(s) = b.sample(wo, u_lobe, u) {
-                    if s.delta {
-                        mirror += 1;
-                    } else {
-                        assert!((s.pdf - b.pdf(wo, s.dir)).abs() <= 1e-4 * s.pdf);
-                        mean += s.weight.x as f64;
-                        smooth += 1;
+        for (m, delta_share) in [
+            (
+                Material {
+                    kr: 0.25,
+                    ..material(0.5, 0.4, 12.0)
+                },
+                0.25,
+            ),
+            (
+                Material {
+                    kr: 0.5,
+                    mirror_exponent: 60.0,
+                    ..material(0.5, 0.4, 12.0)
+                },
+                0.0,
+            ),
+        ] {
+            let b = Bsdf::new(&m, Vec3::ONE, Vec3::Z, Vec3::Z, true);
+            let wo = dir(0.6, 0.0);
+            let k = 256u32;
+            let (mut mean, mut delta, mut smooth) = (0.0f64, 0, 0);
+            for i in 0..k {
+                for j in 0..k {
+                    let u = Vec2::new((i as f32 + 0.5) / k as f32, (j as f32 + 0.5) / k as f32);
+                    let u_lobe = ((i * 7919 + j * 104729) % 65536) as f32 / 65536.0;
+                    if let Some(s) = b.sample(wo, u_lobe, u) {
+                        if s.delta {
+                            delta += 1;
+                        } else {
+                            assert!((s.pdf - b.pdf(wo, s.dir)).abs() <= 1e-4 * s.pdf);
+                            mean += s.weight.x as f64;
+                            smooth += 1;
+                        }
                     }
                 }
             }
+            let n = (k * k) as f64;
+            let expected = albedo(&b, wo, 400);
+            assert!(
+                (mean / n - expected).abs() < 0.01,
+                "{} vs {expected}",
+                mean / n
+            );
+            assert!((delta as f64 / n - delta_share).abs() < 0.01);
+            let mut integral = 0.0f64;
+            let steps = 300;
+            let (dt, dp) = (0.5 * PI / steps as f32, 2.0 * PI / (2 * steps) as f32);
+            for i in 0..steps {
+                let theta = (i as f32 + 0.5) * dt;
+                for j in 0..2 * steps {
+                    let p = b.pdf(wo, dir(theta, (j as f32 + 0.5) * dp)) as f64;
+                    integral += p * (theta.sin() * dt * dp) as f64;
+                }
+            }
+            // Half vectors that would send the direction below the surface give no sample: the
+            // density covers just the samples taken.
+            assert!(integral < 1.0 - delta_share);
+            assert!(
+                (integral - smooth as f64 / n).abs() < 0.01,
+                "{integral} vs {}",
+                smooth as f64 / n
+            );
         }
-        let n = (k * k) as f64;
-        let expected = albedo(&b, wo, 400);
-        assert!(
-            (mean / n - expected).abs() < 0.01,
-            "{} vs {expected}",
-            mean / n
-        );
-        assert!((mirror as f64 / n - 0.25).abs() < 0.01);
-        let mut integral = 0.0f64;
-        let steps = 300;
-        let (dt, dp) = (0.5 * PI / steps as f32, 2.0 * PI / (2 * steps) as f32);
-        for i in 0..steps {
-            let theta = (i as f32 + 0.5) * dt;
-            for j in 0..2 * steps {
-                let p = b.pdf(wo, dir(theta, (j as f32 + 0.5) * dp)) as f64;
-                integral += p * (theta.sin() * dt * dp) as f64;
+    }
+
+    /// A rough mirror of exponent `e` reflects as the glossy lobe of that exponent does (so it
+    /// shares that lobe's albedo bound), tinted by its colour; without roughness it is a delta.
+    #[test]
+    fn rough_mirror_is_the_normalised_lobe_of_its_exponent() {
+        let tint = Vec3::new(0.9, 0.7, 0.2);
+        let mirror = |e: f32| Material {
+            kd: 0.0,
+            kr: 1.0,
+            mirror: tint,
+            mirror_exponent: e,
+            ..Material::default()
+        };
+        for e in [2.0f32, 50.0, 2000.0] {
+            let rough = Bsdf::new(&mirror(e), Vec3::ONE, Vec3::Z, Vec3::Z, true);
+            let glossy = Bsdf::new(&material(0.0, 1.0, e), Vec3::ONE, Vec3::Z, Vec3::Z, true);
+            assert!(rough.has_non_delta());
+            for i in 0..40 {
+                let (wo, wi) = (dir(0.02 * i as f32, 0.3), dir(0.03 * i as f32, 3.0));
+                let (fr, pr) = rough.eval_pdf(wo, wi);
+                let (fg, pg) = glossy.eval_pdf(wo, wi);
+                assert!((fr - tint * fg.x).abs().max_element() <= 1e-6 * fg.x.max(1.0));
+                assert!((pr - pg).abs() <= 1e-6 * pg.max(1.0), "{pr} vs {pg}");
             }
         }
-        // Glossy half vectors that would send the direction below the surface give no sample:
-        // the density covers just the samples taken.
-        assert!(integral < 0.75);
-        assert!(
-            (integral - smooth as f64 / n).abs() < 0.01,
-            "{integral} vs {}",
-            smooth as f64 / n
-        );
+        let perfect = Bsdf::new(&mirror(f32::INFINITY), Vec3::ONE, Vec3::Z, Vec3::Z, true);
+        assert!(!perfect.has_non_delta());
+        let s = perfect
+            .sample(dir(0.4, 1.0), 0.5, Vec2::splat(0.3))
+            .unwrap();
+        assert!(s.delta && s.weight == tint);
     }
 
     /// A glass lobe splits by Fresnel and refracts by Snell's law; inside, past the critical

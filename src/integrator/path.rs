@@ -160,7 +160,7 @@ impl<'a> PathTracer<'a> {
             let wo = -ray.dir;
             let dims = FIRST_DIMENSION + depth as u64 * dims_per_vertex;
             let spawn = hit.spawn_points();
-            if bsdf.has_smooth() {
+            if bsdf.has_non_delta() {
                 radiance += beta * self.direct(&bsdf, &hit, &spawn, wo, key, dims + 1);
             }
             // One 4D point: the direction in its first two (best stratified) dimensions, the lobe

@@ -9,6 +9,9 @@
 //! L = Le + ka·A·c + Σ_lights Σ_samples w·V·E(d)·( kd·c·id·max(0, n·l) + ks·specularcolor·is·max(0, n·h)^p )
 //!   + (kr + kt·F)·L(reflected)  +  kt·(1 − F)·L(refracted)
 //! ```
+//! A rough mirror (a material `roughness`) reflects about a half vector drawn from its
+//! Blinn-Phong lobe, one direction per camera sample, so the pixel's samples blur the
+//! reflection; the weight stays `kr + kt·F`.
 //! where `Le` is the material's emitted radiance (an `emissive` material; 0 otherwise), `A` the
 //! scene's ambient light (0 unless the file gives one, or the file is CGR). In
 //! CGR files an opaque mirror blends instead ([`Reflection::Blended`]): its own terms are scaled by
@@ -52,9 +55,9 @@ use crate::accel::aabb::Aabb;
 use crate::accel::{Accel, Beam};
 use crate::light::Light;
 use crate::material::{highlight, Reflection};
-use crate::math::{fresnel_dielectric, reflect, refract, Vec2, Vec3};
+use crate::math::{fresnel_dielectric, orthonormal_basis, reflect, refract, Vec2, Vec3};
 use crate::ray::{Hit, Ray, SpawnPoints};
-use crate::sampling::SampleKey;
+use crate::sampling::{blinn_phong_half_vector, Method, SampleKey};
 use crate::scene::{RenderMode, Scene};
 
 use super::{finite_radiance, RayCounts, TraceOptions, LIGHT_CLEARANCE};
@@ -63,6 +66,10 @@ use super::{finite_radiance, RayCounts, TraceOptions, LIGHT_CLEARANCE};
 /// relaxed load, small beside this many rays, and the longest stretch without one (an area light
 /// of the largest allowed sample count) stays a small fraction of the ray count.
 const SHADOW_RAYS_PER_CANCEL_CHECK: u32 = 256;
+
+/// The padded sample dimension a rough mirror's reflected direction is drawn from (each shading
+/// point has its own key, so one dimension serves every depth).
+const ROUGH_MIRROR_DIMENSION: u64 = 0x6d69_7272;
 
 /// Colour of a hit in `rendermode: binary` (misses are black), as in the CGR specification.
 pub const BINARY_HIT: Vec3 = Vec3::new(1.0, 0.0, 0.0);
@@ -384,7 +391,19 @@ impl<'a> Whitted<'a> {
             }
         }
         if reflect_weight > 0.0 && self.worth_tracing(weight * reflect_weight) {
-            let r = reflect(ray.dir, n).normalize();
+            let mut r = reflect(ray.dir, n).normalize();
+            if material.has_rough_mirror() {
+                // Distribution ray tracing (Cook, Porter and Carpenter, "Distributed Ray
+                // Tracing", SIGGRAPH 1984): one reflected ray per camera sample, about a half
+                // vector drawn from the mirror's lobe, stratified over the pixel's samples.
+                let u = key.padded(Method::Sobol, ROUGH_MIRROR_DIMENSION, 0, 1);
+                let (t, b) = orthonormal_basis(ns);
+                let h = blinn_phong_half_vector(material.mirror_exponent, u);
+                let blurred = reflect(ray.dir, h.x * t + h.y * b + h.z * ns).normalize();
+                if blurred.dot(n) > 0.0 {
+                    r = blurred; // else the mirror direction, rather than into the surface
+                }
+            }
             branches[1] = Some(branch(r, 1, reflect_weight));
         }
         color

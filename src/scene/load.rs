@@ -30,7 +30,7 @@ use crate::film::ToneMap;
 use crate::geometry::{Cylinder, Mesh, MeshUv, Plane, Primitive, Shape, Sphere, Triangle};
 use crate::image_io::ReadLimits;
 use crate::light::{Falloff, Intensity, Light};
-use crate::material::{Material, Reflection};
+use crate::material::{roughness_exponent, Material, Reflection};
 use crate::math::{Vec2, Vec3};
 use crate::sampling::Method;
 use crate::texture::Texture;
@@ -1679,6 +1679,18 @@ impl<'o> Loader<'o> {
             } else if reflective == Some(true) {
                 m.kr = 1.0;
             }
+            // A metal's roughness is its own (see `material_kind`).
+            let metal = n.peek("type").is_some_and(|t| {
+                t.str().is_ok_and(|k| {
+                    matches!(
+                        k.to_ascii_lowercase().as_str(),
+                        "metal" | "conductor" | "mirror"
+                    )
+                })
+            });
+            if let Some(r) = n.get("roughness").filter(|_| !metal) {
+                m.mirror_exponent = self.mirror_roughness(&r, m.kr)?;
+            }
             let refractive = n
                 .get_any(&["isrefractive", "isRefractive", "isGlass"])
                 .map(|b| b.bool())
@@ -1789,6 +1801,24 @@ impl<'o> Loader<'o> {
         }
     }
 
+    /// The mirror lobe's exponent for a Blinn-Phong material's `roughness` r ≥ 0 (some CGR files
+    /// give one; their renderers blur the mirror part with a GGX lobe of α = r², the convention
+    /// of Burley's "Physically Based Shading at Disney", SIGGRAPH 2012 course notes): a
+    /// microfacet roughness α = r², so 0 keeps a perfect mirror. Past 1 it is taken as 1 (the
+    /// roughest lobe) with a warning where there is a mirror to blur; a material without a
+    /// mirror part has nothing it applies to.
+    fn mirror_roughness(&mut self, r: &Node, kr: f32) -> Result<f32, SceneError> {
+        let v = r.f32()?;
+        if !(v >= 0.0 && v.is_finite()) {
+            return Err(r.error(format!("roughness must be a finite number ≥ 0, found {v}")));
+        }
+        if v > 1.0 && kr > 0.0 {
+            self.warn(r, format!("roughness is at most 1, found {v}; taken as 1"));
+        }
+        let alpha = v.min(1.0);
+        Ok(roughness_exponent(alpha * alpha))
+    }
+
     /// The physically based material forms path-tracing files use (`"type"` with `albedo`,
     /// `roughness`, `ior`, an emitted `colour` × `intensity`), and `emittance` on any material:
     /// see `docs/scene-format.md`, "Material types".
@@ -1836,11 +1866,9 @@ impl<'o> Loader<'o> {
                     m.kr = 1.0;
                     m.mirror = tint;
                 } else {
-                    // A Beckmann roughness α as a Blinn-Phong exponent, 2/α² − 2 (Walter et al.,
-                    // "Microfacet Models for Refraction through Rough Surfaces", EGSR 2007, §5.2).
                     m.ks = 1.0;
                     m.specular = tint;
-                    m.exponent = (2.0 / (roughness * roughness) - 2.0).max(0.0);
+                    m.exponent = roughness_exponent(roughness);
                 }
             }
             "dielectric" | "glass" => {
