@@ -8,7 +8,7 @@ runs give time as a function of MSE (interpolated in log-log); each adaptive run
 divided by the uniform time at its MSE: the equal-error time ratio (below 1: adaptive wins).
 
   python3 benches/adaptive.py [--runs 1] [--max-spp 256] [--scenes penumbra,thinlens]
-                              [--bin target/release/raytracer]
+                              [--bin target/release/raytracer] [--also BIN2,BIN3]
 """
 import argparse
 import math
@@ -60,6 +60,9 @@ def main():
     ap.add_argument("--max-spp", type=int, default=256,
                     help="adaptive cap; uniform runs go from 8 up to it, doubling")
     ap.add_argument("--scenes", default="penumbra,thinlens")
+    ap.add_argument("--also", default="",
+                    help="other binaries, comma-separated, whose adaptive rows are measured in "
+                         "the same run (against the first one's uniform curve)")
     a = ap.parse_args()
     uniform = [n for n in (2 ** k for k in range(3, 21)) if n <= a.max_spp]
     wanted = a.scenes.split(",")
@@ -81,14 +84,18 @@ def main():
                 e = mse(bin_, ref, out)
                 curve.append((e, t))
                 print(f"| uniform {spp} spp | {t:.3f} | {e:.3e} | | |")
+            others = [b for b in a.also.split(",") if b]
+            bins = [("", bin_)] + [(f" ({os.path.basename(b)})", os.path.abspath(b))
+                                   for b in others]
             for th in THRESHOLDS:
-                flags = ["--spp", str(a.max_spp), "--adaptive", "--noise-threshold", str(th),
-                         *extra]
-                t = run(bin_, scene, out, flags, a.runs)
-                e = mse(bin_, ref, out)
-                tu = interp_time(curve, e)
-                print(f"| adaptive ≤{a.max_spp} spp, T = {th} | {t:.3f} | {e:.3e} | {tu:.3f} "
-                      f"| {t / tu:.2f}× |")
+                for label, b in bins:
+                    flags = ["--spp", str(a.max_spp), "--adaptive", "--noise-threshold", str(th),
+                             *extra]
+                    t = run(b, scene, out, flags, a.runs)
+                    e = mse(bin_, ref, out)
+                    tu = interp_time(curve, e)
+                    print(f"| adaptive ≤{a.max_spp} spp, T = {th}{label} | {t:.3f} | {e:.3e} "
+                          f"| {tu:.3f} | {t / tu:.2f}× |")
             sys.stdout.flush()
     return 0
 

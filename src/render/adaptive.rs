@@ -2,15 +2,22 @@
 //! threshold, up to the render's `spp`.
 //!
 //! Round boundaries double: 4, 8, 16, … samples (fewer rounds for small `spp`), so a pixel that
-//! stops after round r holds exactly samples `0..n_r` of the full pattern. After every round
-//! the error of each pixel is estimated from two halves of its samples, in the way Cycles does
-//! (Blender's `kernel/film/adaptive_sampling.h`, after Dammertz et al. 2010, "A hierarchical
-//! automatic stopping condition for Monte Carlo global illumination"): with `I` the mean of all
-//! samples and `A` the mean of the odd-numbered ones,
+//! stops after round r holds exactly samples `0..n_r` of the full pattern. After every round from
+//! the [`FIRST_DECISION`]th sample on, the error of each pixel is estimated from two groups of its
+//! samples, after Dammertz et al. 2010 ("A hierarchical automatic stopping condition for Monte
+//! Carlo global illumination") and Cycles (Blender's `kernel/film/adaptive_sampling.h`): with `F`
+//! the mean of the `k` samples before the last round, `L` the mean of the last round's `n − k`,
+//! and `I` the mean of all `n`,
 //!
 //! ```text
-//! error = (|I_r − A_r| + |I_g − A_g| + |I_b − A_b|) / (10⁻⁴ + √(I_r + I_g + I_b))
+//! error = √(k(n − k))/n · (|L_r − F_r| + |L_g − F_g| + |L_b − F_b|) / (10⁻⁴ + √(I_r + I_g + I_b))
 //! ```
+//!
+//! (for `k = n/2`, half the difference of the two halves' means: the standard error of `I` when
+//! the samples are independent). Cycles splits odd-numbered from even-numbered samples instead;
+//! with Owen-scrambled Sobol points (the default under `--adaptive`) those lie in opposite halves
+//! of the pixel, so their difference measures the pixel's gradient, and an edge never looked
+//! converged. The first `n/2` points and the next `n/2` each cover the whole pixel, stratified.
 //!
 //! which is relative to the square root of the brightness, as the eye is. A pixel goes on while
 //! the largest error in its 3×3 neighbourhood is above the threshold, so a pixel whose few samples
@@ -51,6 +58,16 @@ pub const DEFAULT_THRESHOLD: f32 = 0.01;
 /// The fewest samples a pixel takes before its error is first estimated.
 const FIRST_ROUND: u32 = 4;
 
+/// The samples every pixel takes before any may stop under a threshold above 0. The estimate
+/// compares two groups of a pixel's samples, one draw of their difference, and with four
+/// samples a group a pixel of a noisy region often looks converged: on `scenes/penumbra.json`
+/// the first decision at 4 samples gave 1.0–1.35× uniform sampling's time at equal error for
+/// thresholds 0.04 and 0.02, at 16 samples 0.90–0.95× (`benches/adaptive.py`; docs/adaptive.md).
+/// Cycles waits longer for its estimate, max(4, ⌈16/T^0.3⌉) samples (64 at T = 0.01, Blender's
+/// `scene/integrator.cpp`); here that cost the thin-lens scene 1.3× the time, as its in-focus
+/// half then takes 64 samples where 16 already agree.
+const FIRST_DECISION: u32 = 16;
+
 /// The sample counts at which rounds end: doubling from [`FIRST_ROUND`] up to `spp`.
 pub fn round_ends(spp: u32) -> Vec<u32> {
     let mut ends = Vec::new();
@@ -80,19 +97,31 @@ pub(super) fn traced_region(window: PixelRect, full: PixelRect, spp: u32) -> Pix
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct PixelState {
     all: PixelSum,
-    odd: PixelSum,
+    /// The sums of the samples before the last round (`first_count` of them) and of the last
+    /// round's.
+    first: PixelSum,
+    last: PixelSum,
+    first_count: u32,
     count: u32,
     active: bool,
 }
 
 impl PixelState {
+    /// The estimated standard error of the pixel's mean, relative to the square root of its
+    /// brightness: from the difference between the samples of the last round and those before
+    /// it (see the module docs).
     fn error(&self) -> f32 {
-        if self.count < 2 {
+        let (n, k) = (self.count, self.first_count);
+        if k == 0 || k >= n {
             return f32::INFINITY;
         }
-        let i = self.all.mean(self.count);
-        let a = self.odd.mean(self.count / 2);
-        let e = (i - a).abs().element_sum() / (1e-4 + i.element_sum().max(0.0).sqrt());
+        let i = self.all.mean(n);
+        let first = self.first.mean(k);
+        let rest = self.last.mean(n - k);
+        // Var(rest − first) = σ²·n/(k(n − k)); the mean of all n has σ²/n.
+        let scale = ((k as f32) * ((n - k) as f32)).sqrt() / n as f32;
+        let e =
+            (rest - first).abs().element_sum() * scale / (1e-4 + i.element_sum().max(0.0).sqrt());
         // NaN (a NaN sample) never converges, so it is not hidden by stopping early.
         if e.is_nan() {
             f32::INFINITY
@@ -130,6 +159,12 @@ pub(super) fn trace(
     let deadline = settings.time_limit.map(|t| Instant::now() + t);
     let out_of_time = || deadline.is_some_and(|d| Instant::now() >= d);
     let mut rays = RayCounts::default();
+    // A threshold of 0 stops only pixels whose samples all agree: nothing to wait for.
+    let floor = if settings.threshold > 0.0 {
+        FIRST_DECISION
+    } else {
+        0
+    };
     let mut start = 0;
     let mut cancelled = false;
     for (round, &end) in ends.iter().enumerate() {
@@ -148,6 +183,9 @@ pub(super) fn trace(
                     }
                     // A pixel's state changes only once its round is complete.
                     let mut next = *p;
+                    next.first = p.all;
+                    next.first_count = p.count;
+                    next.last = PixelSum::default();
                     let x = region.x0 + i as u32;
                     for s in start..end {
                         if tracer.cancelled() {
@@ -155,9 +193,7 @@ pub(super) fn trace(
                         }
                         let c = work.sample(&mut tracer, x, y, s);
                         next.all.add(c);
-                        if s % 2 == 1 {
-                            next.odd.add(c);
-                        }
+                        next.last.add(c);
                     }
                     next.count = end;
                     *p = next;
@@ -177,7 +213,7 @@ pub(super) fn trace(
             break;
         }
         start = end;
-        if round + 1 < ends.len() {
+        if round + 1 < ends.len() && end >= floor {
             decide(&mut states, region, settings.threshold);
             if !states.iter().any(|p| p.active) {
                 break;
@@ -241,41 +277,59 @@ mod tests {
         assert_eq!(round_ends(100), vec![4, 8, 16, 32, 64, 100]);
     }
 
+    /// A pixel whose last round took the second half of `samples`.
     fn state(samples: &[f32]) -> PixelState {
         let mut p = PixelState {
             active: true,
             ..PixelState::default()
         };
+        let k = samples.len() / 2;
         for (s, &v) in samples.iter().enumerate() {
             p.all.add(Vec3::splat(v));
-            if s % 2 == 1 {
-                p.odd.add(Vec3::splat(v));
+            if s < k {
+                p.first.add(Vec3::splat(v));
+            } else {
+                p.last.add(Vec3::splat(v));
             }
         }
         p.count = samples.len() as u32;
+        p.first_count = k as u32;
         p
     }
 
     #[test]
     fn error_is_zero_for_equal_samples_and_grows_with_their_spread() {
         assert_eq!(state(&[0.5; 8]).error(), 0.0);
-        let small = state(&[0.5, 0.52, 0.5, 0.52]).error();
-        let large = state(&[0.2, 0.8, 0.2, 0.8]).error();
+        let small = state(&[0.5, 0.5, 0.52, 0.52]).error();
+        let large = state(&[0.2, 0.2, 0.8, 0.8]).error();
         assert!(small > 0.0 && large > 10.0 * small, "{small} {large}");
         assert_eq!(state(&[0.5]).error(), f32::INFINITY);
         assert_eq!(state(&[0.5, f32::NAN]).error(), f32::INFINITY);
+    }
+
+    /// Owen-scrambled Sobol puts a pixel's odd-numbered samples in one half of it and the even
+    /// ones in the other, so on an edge they differ however many there are; each round's
+    /// samples, and those before, cover the whole pixel alike, so they agree.
+    #[test]
+    fn an_edge_sampled_evenly_on_both_sides_converges() {
+        let edge = state(&[0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0]);
+        assert_eq!(edge.error(), 0.0);
+        // The error of the mean of all n samples: half the difference of two halves' means.
+        let halves = state(&[0.4, 0.4, 0.6, 0.6]);
+        let want = 0.2 * 3.0 / 2.0 / (1e-4 + 1.5f32.sqrt());
+        assert!((halves.error() - want).abs() < 1e-6, "{}", halves.error());
     }
 
     #[test]
     fn a_noisy_pixel_keeps_its_neighbours_going() {
         let region = PixelRect::full(5, 1);
         let mut states = vec![state(&[0.5; 4]); 5];
-        states[0] = state(&[0.0, 1.0, 0.0, 1.0]);
+        states[0] = state(&[0.0, 0.0, 1.0, 1.0]);
         decide(&mut states, region, 0.01);
         let active: Vec<bool> = states.iter().map(|p| p.active).collect();
         assert_eq!(active, [true, true, false, false, false]);
         // Once stopped, a pixel stays stopped.
-        states[4] = state(&[0.0, 1.0, 0.0, 1.0]);
+        states[4] = state(&[0.0, 0.0, 1.0, 1.0]);
         states[4].active = false;
         decide(&mut states, region, 0.01);
         assert!(!states[3].active && !states[4].active);
