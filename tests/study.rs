@@ -211,3 +211,66 @@ fn a_path_traced_study_counts_pixel_samples_and_converges() {
     }
     assert_eq!(raytracer::study::counted(integrator), "samples per pixel");
 }
+
+/// `study --adaptive`: uniform runs at 1 … 64 pixel samples and one adaptive run per threshold,
+/// each adaptive run between the first decision (16) and the cap on average, looser thresholds
+/// taking fewer samples, every ratio inside the uniform runs' range positive; a plot and the
+/// reference. Its flags are checked as usage errors.
+#[test]
+fn an_adaptive_study_compares_at_equal_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = |extra: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_raytracer"))
+            .arg("study")
+            .arg(repo().join("scenes/thinlens.json"))
+            .args(["--quick", "--out"])
+            .arg(dir.path())
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let out = study(&["--adaptive", "--thresholds", "0.04,0.01"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("[9/9]"), "no progress: {stderr}");
+    let csv = std::fs::read_to_string(dir.path().join("study.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some("render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,uniform_seconds,ratio")
+    );
+    let rows: Vec<Vec<String>> = lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    let uniform: Vec<u32> = rows
+        .iter()
+        .filter(|r| r[0] == "uniform")
+        .map(|r| r[2].parse().unwrap())
+        .collect();
+    assert_eq!(uniform, [1, 2, 4, 8, 16, 32, 64]);
+    let adaptive: Vec<&Vec<String>> = rows.iter().filter(|r| r[0] == "adaptive").collect();
+    assert_eq!(adaptive.len(), 2);
+    let mean = |r: &Vec<String>| r[3].parse::<f64>().unwrap();
+    for r in &adaptive {
+        assert_eq!(r.len(), 10, "{r:?}");
+        assert!((16.0..=64.0).contains(&mean(r)), "{r:?}");
+        let mse: f64 = r[6].parse().unwrap();
+        assert!(mse.is_finite() && mse > 0.0, "{r:?}");
+        if !r[9].is_empty() {
+            assert!(r[9].parse::<f64>().unwrap() > 0.0, "{r:?}");
+        }
+    }
+    assert!(mean(adaptive[0]) <= mean(adaptive[1]), "{adaptive:?}");
+    let plot = image::open(dir.path().join("study.png")).unwrap();
+    assert_eq!((plot.width(), plot.height()), (900, 560));
+    assert!(dir.path().join("reference.exr").exists());
+
+    for bad in [
+        &["--thresholds", "0.01"][..],
+        &["--adaptive", "--thresholds", "0"],
+        &["--adaptive", "--skip-work"],
+    ] {
+        let out = study(bad);
+        assert_eq!(out.status.code(), Some(2), "{bad:?}");
+    }
+}

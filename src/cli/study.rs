@@ -1,7 +1,8 @@
 //! `raytracer study SCENE`: how fast each area-light sampler's error falls, per shadow ray and
 //! per second (library code in `crate::study`). Writes a CSV of the runs and a log-log plot,
 //! and prints the fitted slopes and the time each sampler needs to reach a target MSE.
-//! `--skip-work` instead times the work-skipping switches against a plain render.
+//! `--skip-work` instead times the work-skipping switches against a plain render, and
+//! `--adaptive` adaptive against uniform sampling at equal error (`crate::study::adaptive`).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -88,6 +89,21 @@ struct StudyCli {
     /// mean FLIP against the plain render.
     #[arg(long)]
     skip_work: bool,
+    /// Instead of the sampler study: uniform against adaptive sampling at equal error. Uniform
+    /// runs at 1, 2, 4, … up to --max-samples pixel samples, adaptive runs (--adaptive, at most
+    /// --max-samples) at each of --thresholds; the reference is --reference-samples uniform pixel
+    /// samples. Sobol pixel samples in every run.
+    #[arg(long, conflicts_with = "skip_work")]
+    adaptive: bool,
+    /// Noise thresholds of the --adaptive study's adaptive runs, comma-separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "0.04,0.02,0.01,0.005",
+        requires = "adaptive",
+        value_parser = values::positive_f32
+    )]
+    thresholds: Vec<f32>,
     /// Samples per pixel for --skip-work.
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=65536))]
     spp: u32,
@@ -123,6 +139,8 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     let result = pool.install(|| {
         if cli.skip_work {
             skip_work(&cli)
+        } else if cli.adaptive {
+            adaptive(&cli, &interrupt)
         } else {
             run(&cli, &interrupt)
         }
@@ -153,10 +171,55 @@ fn load_scene(cli: &StudyCli) -> Result<crate::scene::Scene, String> {
     Ok(scene)
 }
 
-fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
+/// What both studies start from: the scene, its integrator, the reference, and the outputs
+/// claimed (so that an unwritable folder is reported before any run).
+struct Setup {
+    scene: crate::scene::Scene,
+    integrator: crate::integrator::Kind,
+    reference: crate::film::Film,
+    outputs: StudyOutputs,
+}
+
+/// A study's CSV and plot, created and waiting for their bytes.
+struct StudyOutputs {
+    csv: PathBuf,
+    plot: PathBuf,
+    csv_out: PendingFile,
+    plot_out: PendingFile,
+}
+
+impl StudyOutputs {
+    /// Writes the CSV and the plot.
+    fn write(self, interrupt: &Interrupt, csv: &[u8], png: &[u8]) -> Result<(), String> {
+        interrupt
+            .commit(self.csv_out, csv)
+            .map_err(|e| e.to_string())?;
+        interrupt
+            .commit(self.plot_out, png)
+            .map_err(|e| e.to_string())?;
+        eprintln!(
+            "study: wrote {} and {}",
+            shown(&self.csv),
+            shown(&self.plot)
+        );
+        Ok(())
+    }
+}
+
+/// Loads the scene, claims the outputs, and reads the reference or renders it with
+/// `render_reference(scene, integrator, samples)` (`what` names its samples in the log).
+fn setup(
+    cli: &StudyCli,
+    interrupt: &Interrupt,
+    what: fn(crate::integrator::Kind) -> &'static str,
+    render_reference: impl FnOnce(
+        &crate::scene::Scene,
+        crate::integrator::Kind,
+        u32,
+    ) -> Result<crate::film::Film, crate::render::RenderError>,
+) -> Result<Setup, String> {
     let scene = load_scene(cli)?;
     let integrator = crate::integrator::Kind::chosen(cli.integrator, &scene);
-    let counted = study::counted(integrator);
     let (w, h) = (scene.camera.width, scene.camera.height);
     if let Some(r) = cli.region {
         if !r.fits(w, h) {
@@ -215,9 +278,9 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             } else {
                 cli.reference_samples
             };
-            eprintln!("study: reference, {n} {counted}, {w}×{h} …");
+            eprintln!("study: reference, {n} {}, {w}×{h} …", what(integrator));
             let t = Instant::now();
-            let f = study::reference(&scene, integrator, n).map_err(|e| e.to_string())?;
+            let f = render_reference(&scene, integrator, n).map_err(|e| e.to_string())?;
             eprintln!("study: reference took {:.2} s", t.elapsed().as_secs_f64());
             let bytes = encode_image(&reference_out, &f, ToneMap::Linear, 1.0)
                 .map_err(|e| e.to_string())?;
@@ -229,7 +292,42 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             f
         }
     };
+    Ok(Setup {
+        scene,
+        integrator,
+        reference,
+        outputs: StudyOutputs {
+            csv,
+            plot,
+            csv_out,
+            plot_out,
+        },
+    })
+}
 
+/// The scene's file name and the region's description, for titles.
+fn described(cli: &StudyCli) -> (String, String) {
+    let name = cli
+        .scene
+        .file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let what = match cli.region {
+        Some(r) => format!("region {},{},{},{}", r.x, r.y, r.width, r.height),
+        None => "whole image".into(),
+    };
+    (name, what)
+}
+
+fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
+    let Setup {
+        scene,
+        integrator,
+        reference,
+        outputs,
+    } = setup(cli, interrupt, study::counted, study::reference)?;
+    let counted = study::counted(integrator);
+    let (w, h) = (scene.camera.width, scene.camera.height);
     let options = StudyOptions {
         samplers: cli.samplers.clone(),
         max_samples: if cli.quick {
@@ -263,22 +361,9 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             r.sampler, r.samples, r.mse, r.flip
         ));
     }
-    interrupt
-        .commit(csv_out, study::csv_text(&runs).as_bytes())
-        .map_err(|e| e.to_string())?;
-    let name = cli
-        .scene
-        .file_name()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let what = match cli.region {
-        Some(r) => format!("region {},{},{},{}", r.x, r.y, r.width, r.height),
-        None => "whole image".into(),
-    };
+    let (name, what) = described(cli);
     let png = study::plot_png(&runs, &format!("{name}: {what}, {w}×{h}"), counted)?;
-    interrupt
-        .commit(plot_out, &png)
-        .map_err(|e| e.to_string())?;
+    outputs.write(interrupt, study::csv_text(&runs).as_bytes(), &png)?;
 
     outln!(
         "MSE over the {what}; slopes fitted over runs with ≥ {} {counted}",
@@ -314,7 +399,97 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             }
         }
     }
-    eprintln!("study: wrote {} and {}", shown(&csv), shown(&plot));
+    Ok(())
+}
+
+/// The largest pixel-sample count of a `--quick` adaptive study: past the first decision (16
+/// samples), so that some pixels can stop.
+const QUICK_ADAPTIVE_CAP: u32 = 64;
+
+fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
+    let Setup {
+        scene,
+        integrator,
+        reference,
+        outputs,
+    } = setup(
+        cli,
+        interrupt,
+        |_| "samples per pixel",
+        study::adaptive::reference,
+    )?;
+    let options = study::adaptive::AdaptiveStudyOptions {
+        max_samples: if cli.quick {
+            cli.max_samples.min(QUICK_ADAPTIVE_CAP)
+        } else {
+            cli.max_samples
+        },
+        thresholds: cli.thresholds.clone(),
+        integrator,
+        runs: cli.runs as usize,
+        region: cli.region,
+        seed: cli.seed,
+    };
+    let result = study::adaptive::run_adaptive_study(&scene, &reference, &options, |i, n, line| {
+        eprintln!("study: [{i}/{n}] {line}");
+    })
+    .map_err(|e| e.to_string())?;
+    let errors = result
+        .uniform
+        .iter()
+        .map(|r| (r.mse_region, r.flip))
+        .chain(result.adaptive.iter().map(|r| (r.mse_region, r.flip)));
+    if errors
+        .clone()
+        .any(|(e, f)| !(e.is_finite() && f.is_finite()))
+    {
+        return Err("a run has a non-finite error: no results written".into());
+    }
+    let (name, what) = described(cli);
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let png = study::adaptive::plot_png(
+        &result,
+        &format!(
+            "{name}: {what}, {w}×{h}, at most {} spp",
+            options.max_samples
+        ),
+    )?;
+    outputs.write(
+        interrupt,
+        study::adaptive::csv_text(&result).as_bytes(),
+        &png,
+    )?;
+    outln!("MSE over the {what}; uniform and adaptive both with Sobol pixel samples");
+    outln!(
+        "{:<18} {:>9} {:>10} {:>11} {:>14} {:>7}",
+        "render",
+        "spp",
+        "seconds",
+        "MSE",
+        "uniform s",
+        "ratio"
+    );
+    for r in &result.uniform {
+        outln!(
+            "{:<18} {:>9} {:>10.4} {:>11.3e}",
+            "uniform",
+            r.samples,
+            r.seconds,
+            r.mse_region
+        );
+    }
+    for r in &result.adaptive {
+        outln!(
+            "{:<18} {:>9.1} {:>10.4} {:>11.3e} {:>14} {:>7}",
+            format!("adaptive T={}", r.threshold),
+            r.mean_samples,
+            r.seconds,
+            r.mse_region,
+            r.uniform_seconds
+                .map_or("out of range".into(), |u| format!("{u:.4}")),
+            r.ratio().map_or("-".into(), |q| format!("{q:.2}×"))
+        );
+    }
     Ok(())
 }
 

@@ -16,6 +16,8 @@
 //! such edges (Owen, "Scrambled net variance for integrals of smooth functions", Ann. Stat.
 //! 1997, and Mitchell's analysis).
 
+pub mod adaptive;
+
 use image::ImageEncoder;
 
 use crate::film::Film;
@@ -294,7 +296,7 @@ pub fn csv_text(runs: &[Run]) -> String {
 
 /// The font the plots' text is drawn with, bundled so that no system font is needed (DejaVu Sans
 /// Mono, Bitstream Vera licence: `assets/fonts/DejaVu-LICENSE.txt`).
-static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSansMono.ttf");
+static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSansMono.ttf");
 
 fn register_font() {
     static ONCE: std::sync::Once = std::sync::Once::new();
@@ -364,15 +366,7 @@ pub fn plot_rgb(
                 )
                 .build_cartesian_2d((xmin..xmax).log_scale(), (ymin..ymax).log_scale())
                 .map_err(|e| e.to_string())?;
-            chart
-                .configure_mesh()
-                .x_desc(if by_time { "seconds" } else { counted })
-                .y_desc("MSE")
-                .x_label_formatter(&|v| tick(*v))
-                .y_label_formatter(&|v| tick(*v))
-                .label_style(("sans-serif", 12))
-                .draw()
-                .map_err(|e| e.to_string())?;
+            draw_axes(&mut chart, if by_time { "seconds" } else { counted })?;
             for &m in &samplers {
                 let c = colour(m);
                 let pts: Vec<(f64, f64)> = runs_of(runs, m)
@@ -400,18 +394,56 @@ pub fn plot_rgb(
                     .draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))
                     .map_err(|e| e.to_string())?;
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::LowerLeft)
-                .label_font(("sans-serif", 13))
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .draw()
-                .map_err(|e| e.to_string())?;
+            draw_legend(&mut chart)?;
         }
         root.present().map_err(|e| e.to_string())?;
     }
     Ok(buf)
+}
+
+/// A log-log chart drawn into an RGB buffer.
+type LogChart<'a, 'b> = plotters::chart::ChartContext<
+    'a,
+    plotters::backend::BitMapBackend<'b>,
+    plotters::coord::cartesian::Cartesian2d<
+        plotters::coord::combinators::LogCoord<f64>,
+        plotters::coord::combinators::LogCoord<f64>,
+    >,
+>;
+
+/// The axes and grid of the studies' plots: `x` described as `x_desc`, `y` the MSE, log ticks.
+fn draw_axes<'a, 'b: 'a>(chart: &mut LogChart<'a, 'b>, x_desc: &str) -> Result<(), String> {
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc("MSE")
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| tick(*v))
+        .label_style(("sans-serif", 12))
+        .draw()
+        .map_err(|e| e.to_string())
+}
+
+/// The legend of the studies' plots: lower left, on a pale box.
+fn draw_legend<'a, 'b: 'a>(chart: &mut LogChart<'a, 'b>) -> Result<(), String> {
+    use plotters::prelude::*;
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerLeft)
+        .label_font(("sans-serif", 13))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| e.to_string())
+}
+
+/// A `width × height` RGB8 buffer as PNG bytes.
+fn encode_png(buf: &[u8], width: u32, height: u32) -> Result<Vec<u8>, String> {
+    let mut png = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut png)
+        .write_image(buf, width, height, image::ExtendedColorType::Rgb8)
+        .map_err(|e| format!("cannot encode the plot: {e}"))?;
+    Ok(png)
 }
 
 /// A log-axis tick label: only 1, 2 and 5 times a power of ten are written, so labels do not
@@ -451,12 +483,7 @@ fn bounds(v: &[f64]) -> (f64, f64) {
 /// The plot of [`plot_rgb`] as PNG bytes.
 pub fn plot_png(runs: &[Run], title: &str, counted: &str) -> Result<Vec<u8>, String> {
     let (w, h) = (1200, 520);
-    let buf = plot_rgb(runs, title, counted, w, h)?;
-    let mut png = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut png)
-        .write_image(&buf, w, h, image::ExtendedColorType::Rgb8)
-        .map_err(|e| format!("cannot encode the plot: {e}"))?;
-    Ok(png)
+    encode_png(&plot_rgb(runs, title, counted, w, h)?, w, h)
 }
 
 /// One variant of a work-skipping comparison.
