@@ -1679,18 +1679,6 @@ impl<'o> Loader<'o> {
             } else if reflective == Some(true) {
                 m.kr = 1.0;
             }
-            // A metal's roughness is its own (see `material_kind`).
-            let metal = n.peek("type").is_some_and(|t| {
-                t.str().is_ok_and(|k| {
-                    matches!(
-                        k.to_ascii_lowercase().as_str(),
-                        "metal" | "conductor" | "mirror"
-                    )
-                })
-            });
-            if let Some(r) = n.get("roughness").filter(|_| !metal) {
-                m.mirror_exponent = self.mirror_roughness(&r, m.kr)?;
-            }
             let refractive = n
                 .get_any(&["isrefractive", "isRefractive", "isGlass"])
                 .map(|b| b.bool())
@@ -1723,8 +1711,11 @@ impl<'o> Loader<'o> {
                     return Err(at.error(format!("{name} must be ≥ 0, found {v}")));
                 }
             }
-            if own_material {
-                self.material_kind(n, &mut m)?;
+            // A metal's roughness is its own (see `material_kind`); any other material's blurs
+            // its mirror part.
+            let roughness_read = own_material && self.material_kind(n, &mut m)?;
+            if let Some(r) = n.get("roughness").filter(|_| !roughness_read) {
+                m.mirror_exponent = self.mirror_roughness(&r, m.kr)?;
             }
             // Checked once the material's `type` has said whether it transmits.
             if let Some(e) = eta_node.filter(|_| m.eta <= 0.0 && m.kt > 0.0) {
@@ -1821,19 +1812,20 @@ impl<'o> Loader<'o> {
 
     /// The physically based material forms path-tracing files use (`"type"` with `albedo`,
     /// `roughness`, `ior`, an emitted `colour` × `intensity`), and `emittance` on any material:
-    /// see `docs/scene-format.md`, "Material types".
-    fn material_kind(&mut self, n: &Node, m: &mut Material) -> Result<(), SceneError> {
+    /// see `docs/scene-format.md`, "Material types". Returns whether the type read `roughness`
+    /// as its own (a metal's).
+    fn material_kind(&mut self, n: &Node, m: &mut Material) -> Result<bool, SceneError> {
         if let Some(e) = n.get("emittance") {
             m.emission = e.color()?;
         }
         let Some(t) = n.peek("type") else {
-            return Ok(());
+            return Ok(false);
         };
         let Ok(kind) = t.str().map(str::to_ascii_lowercase) else {
-            return Ok(()); // not a type name: left for the unknown-key warning
+            return Ok(false); // not a type name: left for the unknown-key warning
         };
         if !MATERIAL_TYPES.contains(&kind.as_str()) {
-            return Ok(()); // a model of another renderer: left for the unknown-key warning
+            return Ok(false); // a model of another renderer: left for the unknown-key warning
         }
         n.mark_read(&["type"]);
         let albedo = match n.get("albedo") {
@@ -1870,6 +1862,7 @@ impl<'o> Loader<'o> {
                     m.specular = tint;
                     m.exponent = roughness_exponent(roughness);
                 }
+                return Ok(true);
             }
             "dielectric" | "glass" => {
                 m.kd = 0.0;
@@ -1895,7 +1888,7 @@ impl<'o> Loader<'o> {
             }
             _ => {} // Blinn-Phong: the keys already say it all
         }
-        Ok(())
+        Ok(false)
     }
 
     /// A texture reference: the name of a texture library entry, a path string, or an object
