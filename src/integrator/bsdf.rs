@@ -20,12 +20,13 @@
 //! lower at every other angle (checked by the tests here), so the lobe never reflects more than
 //! it receives. **Energy is conserved** by scaling `ρd` and `ρg` together so that
 //! `max over channels of (ρd + ρg) ≤ 1`, and the three lobe weights sum to one. The smooth lobes
-//! and the rough mirror are symmetric in the two directions (reciprocal); the mirror reflects about the geometric normal
-//! and the dielectric splits by the exact Fresnel reflectance, refracting by Snell's law (total
-//! internal reflection included; no absorption). Sampling picks a lobe with the probability of its
-//! weight, so a mirror of reflectance `r` and a surface of weight `1 − r` stay unbiased together;
-//! a direction drawn from any lobe that is not a delta carries the density of all of them (the
-//! one-sample mixture), which is what MIS against light samples needs.
+//! and the rough mirror are symmetric in the two directions (reciprocal); the perfect mirror
+//! reflects about the geometric normal and the dielectric splits by the exact Fresnel
+//! reflectance, refracting by Snell's law (total internal reflection included; no absorption).
+//! Sampling picks a lobe with the probability of its weight, so a mirror of reflectance `r` and
+//! a surface of weight `1 − r` stay unbiased together; a direction drawn from any lobe that is
+//! not a delta carries the density of all of them (the one-sample mixture), which is what MIS
+//! against light samples needs.
 //!
 //! `ka` and the scene's ambient light belong to Whitted shading and are not used here.
 
@@ -172,13 +173,12 @@ impl Bsdf {
     /// [`Bsdf::eval`] and [`Bsdf::pdf`] together, sharing the cosines and the half vector: a
     /// light sample needs both.
     pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
-        if !self.has_non_delta() || wi.dot(self.ng) <= 0.0 || wo.dot(self.ng) <= 0.0 {
+        if !self.has_non_delta() {
             return (Vec3::ZERO, 0.0);
         }
-        let (co, ci) = (self.n.dot(wo), self.n.dot(wi));
-        if co <= 0.0 || ci <= 0.0 {
+        let Some(ci) = self.reflected_cosine(wo, wi) else {
             return (Vec3::ZERO, 0.0);
-        }
+        };
         // The half vector's cosines with the normal and with `wo`, worked out only for a lobe
         // that needs them (a diffuse surface does not).
         let half = || {
@@ -269,16 +269,25 @@ impl Bsdf {
         }
         // Diffuse is the only lobe that is not a delta: its density is the cosine's, and
         // f·cos/pdf is its albedo (what `scattered` would find, without the evaluation).
-        let ci = self.n.dot(wi);
-        if ci <= 0.0 || wi.dot(self.ng) <= 0.0 || wo.dot(self.ng) <= 0.0 || self.n.dot(wo) <= 0.0 {
-            return None;
-        }
+        let ci = self.reflected_cosine(wo, wi)?;
         Some(BsdfSample {
             dir: wi,
             weight: self.diffuse,
             pdf: self.smooth * (ci * FRAC_1_PI),
             delta: false,
         })
+    }
+
+    /// `cos θi` against the shading normal where `wo` and `wi` both lie on the side the ray came
+    /// from, for the geometric and the shading normal alike (only there do the lobes that are
+    /// not deltas reflect); `None` elsewhere.
+    #[inline]
+    fn reflected_cosine(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
+        if wi.dot(self.ng) <= 0.0 || wo.dot(self.ng) <= 0.0 {
+            return None;
+        }
+        let (co, ci) = (self.n.dot(wo), self.n.dot(wi));
+        (co > 0.0 && ci > 0.0).then_some(ci)
     }
 
     /// The sample for a direction `wi` drawn from a lobe that is not a delta: weighted by the
