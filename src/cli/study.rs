@@ -434,15 +434,12 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         eprintln!("study: [{i}/{n}] {line}");
     })
     .map_err(|e| e.to_string())?;
-    let errors = result
+    let mut errors = result
         .uniform
         .iter()
         .map(|r| (r.mse_region, r.flip))
         .chain(result.adaptive.iter().map(|r| (r.mse_region, r.flip)));
-    if errors
-        .clone()
-        .any(|(e, f)| !(e.is_finite() && f.is_finite()))
-    {
+    if errors.any(|(e, f)| !(e.is_finite() && f.is_finite())) {
         return Err("a run has a non-finite error: no results written".into());
     }
     let (name, what) = described(cli);

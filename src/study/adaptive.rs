@@ -10,7 +10,7 @@
 //! sample of the scene (area lights, the lens, a path's bounces) is the render's own.
 
 use super::{
-    bounds, draw_axes, draw_legend, encode_png, median, register_font, runs_of, time_to_reach, Run,
+    bounds, draw_axes, draw_legend, encode_png, register_font, runs_of, time_to_reach, timed, Run,
     REFERENCE_SEED,
 };
 use crate::film::Film;
@@ -110,15 +110,10 @@ pub fn run_adaptive_study(
     let region = options.region.unwrap_or(full);
     let counts = super::sample_counts(Method::Sobol, options.max_samples);
     let total = counts.len() + options.thresholds.len();
-    let timed = |threshold: Option<f32>, spp: u32| -> Result<(RenderOutput, f64), RenderError> {
-        let mut times = Vec::with_capacity(options.runs.max(1));
-        let mut last = None;
-        for _ in 0..options.runs.max(1) {
-            let r = render_pixels(scene, options.integrator, spp, threshold, options.seed)?;
-            times.push(r.render_time.as_secs_f64());
-            last = Some(r);
-        }
-        Ok((last.expect("at least one render"), median(&mut times)))
+    let timed = |threshold: Option<f32>, spp: u32| {
+        timed(options.runs, || {
+            render_pixels(scene, options.integrator, spp, threshold, options.seed)
+        })
     };
     let mut uniform = Vec::with_capacity(counts.len());
     for (i, &spp) in counts.iter().enumerate() {

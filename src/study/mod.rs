@@ -160,6 +160,22 @@ pub fn median(v: &mut [f64]) -> f64 {
     }
 }
 
+/// `render` done `runs` times (at least once): the last output and the median render time in
+/// seconds.
+fn timed(
+    runs: usize,
+    mut render: impl FnMut() -> Result<RenderOutput, RenderError>,
+) -> Result<(RenderOutput, f64), RenderError> {
+    let mut times = Vec::with_capacity(runs.max(1));
+    let mut last = None;
+    for _ in 0..runs.max(1) {
+        let r = render()?;
+        times.push(r.render_time.as_secs_f64());
+        last = Some(r);
+    }
+    Ok((last.expect("at least one render"), median(&mut times)))
+}
+
 /// Runs the study against `reference`, calling `progress(done, total, run)` after each run.
 pub fn run_study(
     scene: &Scene,
@@ -180,18 +196,14 @@ pub fn run_study(
     let region = options.region.unwrap_or(full);
     let mut out = Vec::with_capacity(plan.len());
     for (i, &(sampler, samples)) in plan.iter().enumerate() {
-        let mut times = Vec::with_capacity(options.runs.max(1));
-        let mut film = None;
-        for _ in 0..options.runs.max(1) {
-            let r = render_with(scene, options.integrator, sampler, samples, options.seed)?;
-            times.push(r.render_time.as_secs_f64());
-            film = Some(r.film);
-        }
-        let film = film.expect("at least one render");
+        let (r, seconds) = timed(options.runs, || {
+            render_with(scene, options.integrator, sampler, samples, options.seed)
+        })?;
+        let film = r.film;
         let run = Run {
             sampler,
             samples,
-            seconds: median(&mut times),
+            seconds,
             mse: mse(reference, &film, full),
             mse_region: mse(reference, &film, region),
             flip: mean_flip(reference, &film, full),
@@ -526,19 +538,12 @@ pub fn skip_work(
             },
             ..base.clone()
         };
-        let mut times = Vec::new();
-        let mut last = None;
-        for _ in 0..runs.max(1) {
-            let r = render(scene, &options)?;
-            times.push(r.render_time.as_secs_f64());
-            last = Some(r);
-        }
-        let r = last.expect("at least one render");
+        let (r, seconds) = timed(runs, || render(scene, &options))?;
         let reference = plain.get_or_insert_with(|| r.film.clone());
         let full = Region::full(r.film.width, r.film.height);
         out.push(SkipRun {
             name,
-            seconds: median(&mut times),
+            seconds,
             rays: r.counts.total(),
             flip: mean_flip(reference, &r.film, full),
             mse: mse(reference, &r.film, full),
