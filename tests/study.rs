@@ -232,7 +232,7 @@ fn an_adaptive_study_compares_at_equal_error() {
     let out = study(&["--adaptive", "--thresholds", "0.04,0.01"]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
-    assert!(stderr.contains("[9/9]"), "no progress: {stderr}");
+    assert!(stderr.contains("[10/10]"), "no progress: {stderr}");
     let csv = std::fs::read_to_string(dir.path().join("study.csv")).unwrap();
     let mut lines = csv.lines();
     assert_eq!(
@@ -250,6 +250,13 @@ fn an_adaptive_study_compares_at_equal_error() {
     assert_eq!(uniform, [1, 2, 4, 8, 16, 32, 64]);
     let adaptive: Vec<&Vec<String>> = rows.iter().filter(|r| r[0] == "adaptive").collect();
     assert_eq!(adaptive.len(), 2);
+    // The best allocation: the last row, a share of uniform's samples. The thin-lens scene's
+    // noise sits in its defocused half, so the share is well below 1.
+    let last = rows.last().unwrap();
+    assert_eq!(last[0], "best_allocation", "{last:?}");
+    let bound: f64 = last[9].parse().unwrap();
+    assert!(bound > 0.0 && bound < 0.6, "{last:?}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("best allocation: "));
     let mean = |r: &Vec<String>| r[3].parse::<f64>().unwrap();
     for r in &adaptive {
         assert_eq!(r.len(), 10, "{r:?}");

@@ -487,6 +487,14 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             r.ratio().map_or("-".into(), |q| format!("{q:.2}×"))
         );
     }
+    if let Some(b) = result.bound {
+        outln!(
+            "best allocation: {b:.2}× uniform's samples at equal MSE (each pixel's samples in \
+             proportion to its noise, measured by {} renders of {} spp)",
+            study::adaptive::VARIANCE_RENDERS,
+            study::adaptive::VARIANCE_SAMPLES.min(options.max_samples)
+        );
+    }
     Ok(())
 }
 

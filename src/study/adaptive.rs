@@ -66,6 +66,73 @@ pub struct AdaptiveStudy {
     /// Uniform runs (sampler Sobol), in sample order.
     pub uniform: Vec<Run>,
     pub adaptive: Vec<AdaptiveRun>,
+    /// [`allocation_bound`] of the scene over the study's region: no adaptive run can do better.
+    pub bound: Option<f64>,
+}
+
+/// Renders, under seeds of their own, of [`VARIANCE_SAMPLES`] uniform Sobol pixel samples each:
+/// the spread of their pixels gives each pixel's variance for [`allocation_bound`].
+pub const VARIANCE_RENDERS: u64 = 8;
+pub const VARIANCE_SAMPLES: u32 = 16;
+/// The first of the variance renders' seeds (the runs use `--seed`, the reference its own).
+const VARIANCE_SEED: u64 = 0x0a11_0ca7_e000;
+
+/// The least share of uniform sampling's samples with which any allocation of samples to the
+/// pixels of `region` reaches uniform sampling's MSE there, each pixel's error variance falling
+/// as σᵢ²/nᵢ: minimising Σnᵢ under Σσᵢ²/nᵢ = Σσᵢ²/m gives nᵢ ∝ σᵢ and the share
+/// (Σσᵢ)² / (N·Σσᵢ²) (Cauchy–Schwarz: 1 when every pixel is as noisy as the others, small when
+/// the noise sits in few pixels). σᵢ² is the variance of pixel i over `films`, independent renders
+/// alike but for their seeds, summed over RGB. The mean of σᵢ estimated from k renders falls short
+/// of the true one by c₄(k) (Gurland & Tripathi 1971, for normal means), so the share is divided
+/// by c₄(k)²; fewer degrees of freedom than RGB's could give make that correction the cautious one.
+/// Past the model: a real adaptive render also pays for its floor of samples, its rounds and
+/// its estimate, and Sobol points converge faster than 1/n where a pixel is smooth. `None` for
+/// fewer than two films or a noiseless region.
+pub fn allocation_bound(films: &[Film], region: Region) -> Option<f64> {
+    let k = films.len();
+    if k < 2 {
+        return None;
+    }
+    let (mut sum_sigma, mut sum_var, mut n) = (0.0f64, 0.0f64, 0.0f64);
+    for y in region.y..region.y + region.height {
+        for x in region.x..region.x + region.width {
+            let values: Vec<[f64; 3]> = films
+                .iter()
+                .map(|f| f.get(x, y).to_array().map(f64::from))
+                .collect();
+            let var: f64 = (0..3)
+                .map(|c| {
+                    let mean = values.iter().map(|v| v[c]).sum::<f64>() / k as f64;
+                    values.iter().map(|v| (v[c] - mean).powi(2)).sum::<f64>() / (k - 1) as f64
+                })
+                .sum();
+            sum_sigma += var.sqrt();
+            sum_var += var;
+            n += 1.0;
+        }
+    }
+    if sum_var.is_nan() || sum_var <= 0.0 {
+        return None;
+    }
+    let c4 = c4(k);
+    Some((sum_sigma * sum_sigma / (n * sum_var) / (c4 * c4)).min(1.0))
+}
+
+/// c₄(k) = √(2/(k−1)) · Γ(k/2)/Γ((k−1)/2) for k ≥ 2: the mean of the sample standard deviation
+/// of k normal values over the true one. The ratio of Gammas starts from Γ(1)/Γ(½) = 1/√π
+/// (k = 2) or Γ(3/2)/Γ(1) = √π/2 (k = 3) and grows by k/(k − 1) from k to k + 2.
+fn c4(k: usize) -> f64 {
+    let sqrt_pi = std::f64::consts::PI.sqrt();
+    let (mut j, mut ratio) = if k.is_multiple_of(2) {
+        (2, 1.0 / sqrt_pi)
+    } else {
+        (3, sqrt_pi / 2.0)
+    };
+    while j < k {
+        ratio *= j as f64 / (j - 1) as f64;
+        j += 2;
+    }
+    (2.0 / (k - 1) as f64).sqrt() * ratio
 }
 
 /// A render of `scene` by `integrator` at `spp` Sobol pixel samples, adaptive with `threshold`
@@ -109,7 +176,7 @@ pub fn run_adaptive_study(
     let full = Region::full(reference.width, reference.height);
     let region = options.region.unwrap_or(full);
     let counts = super::sample_counts(Method::Sobol, options.max_samples);
-    let total = counts.len() + options.thresholds.len();
+    let total = counts.len() + 1 + options.thresholds.len();
     let timed = |threshold: Option<f32>, spp: u32| {
         timed(options.runs, || {
             render_pixels(scene, options.integrator, spp, threshold, options.seed)
@@ -136,6 +203,22 @@ pub fn run_adaptive_study(
         );
         uniform.push(run);
     }
+    let variance_samples = VARIANCE_SAMPLES.min(options.max_samples);
+    let films = (0..VARIANCE_RENDERS)
+        .map(|k| {
+            let seed = VARIANCE_SEED + k;
+            Ok(render_pixels(scene, options.integrator, variance_samples, None, seed)?.film)
+        })
+        .collect::<Result<Vec<Film>, RenderError>>()?;
+    let bound = allocation_bound(&films, region);
+    progress(
+        counts.len() + 1,
+        total,
+        format!(
+            "best allocation: {} of uniform's samples ({VARIANCE_RENDERS} renders of {variance_samples} spp)",
+            bound.map_or("-".into(), |b| format!("{b:.2}×"))
+        ),
+    );
     let mut adaptive = Vec::with_capacity(options.thresholds.len());
     for (i, &threshold) in options.thresholds.iter().enumerate() {
         let (r, seconds) = timed(Some(threshold), options.max_samples)?;
@@ -156,7 +239,7 @@ pub fn run_adaptive_study(
             uniform_seconds: uniform_time_at(&uniform, mse_region),
         };
         progress(
-            counts.len() + i + 1,
+            counts.len() + 1 + i + 1,
             total,
             format!(
                 "adaptive T = {threshold} ({mean_samples:.1} spp)  {seconds:.4} s  MSE {mse_region:.3e}  ratio {}",
@@ -165,7 +248,11 @@ pub fn run_adaptive_study(
         );
         adaptive.push(run);
     }
-    Ok(AdaptiveStudy { uniform, adaptive })
+    Ok(AdaptiveStudy {
+        uniform,
+        adaptive,
+        bound,
+    })
 }
 
 /// The time uniform sampling needs for `target`: [`time_to_reach`] within the uniform runs'
@@ -179,7 +266,8 @@ fn uniform_time_at(uniform: &[Run], target: f64) -> Option<f64> {
 }
 
 /// The study as CSV: `render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,
-/// uniform_seconds,ratio`, uniform rows first (their threshold, uniform time and ratio empty).
+/// uniform_seconds,ratio`, uniform rows first (their threshold, uniform time and ratio empty),
+/// then the adaptive rows, then a `best_allocation` row whose ratio is [`allocation_bound`].
 pub fn csv_text(study: &AdaptiveStudy) -> String {
     let mut s = String::from(
         "render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,uniform_seconds,ratio\n",
@@ -204,6 +292,9 @@ pub fn csv_text(study: &AdaptiveStudy) -> String {
             opt(r.uniform_seconds),
             opt(r.ratio())
         ));
+    }
+    if let Some(b) = study.bound {
+        s.push_str(&format!("best_allocation,,,,,,,,,{b:.6}\n"));
     }
     s
 }
@@ -278,6 +369,7 @@ pub fn plot_png(study: &AdaptiveStudy, title: &str) -> Result<Vec<u8>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::Vec3;
 
     fn uniform(points: &[(u32, f64, f64)]) -> Vec<Run> {
         points
@@ -291,6 +383,43 @@ mod tests {
                 flip: 0.0,
             })
             .collect()
+    }
+
+    /// c₄ against its tabulated values (k = 2: √(2/π); k = 8: 0.9650).
+    #[test]
+    fn c4_matches_its_table() {
+        assert!((c4(2) - (2.0 / std::f64::consts::PI).sqrt()).abs() < 1e-12);
+        assert!((c4(3) - 0.886_226_925).abs() < 1e-9);
+        assert!((c4(8) - 0.965_030).abs() < 1e-6);
+    }
+
+    /// The allocation bound of films whose noise is known: equal noise everywhere gives 1, noise
+    /// in a quarter of the pixels (none elsewhere) gives ¼ (n ∝ σ puts every sample there).
+    #[test]
+    fn allocation_bound_follows_where_the_noise_is() {
+        // Pixel values ±a around 1 over k films with alternating signs: variance a²·k/(k−1).
+        let films = |amplitude: &dyn Fn(u32) -> f32| -> Vec<Film> {
+            (0..8)
+                .map(|i| {
+                    let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+                    let pixels = (0..16)
+                        .map(|p| Vec3::splat(1.0 + sign * amplitude(p)))
+                        .collect();
+                    Film::from_pixels(4, 4, pixels)
+                })
+                .collect()
+        };
+        let full = Region::full(4, 4);
+        let correction = c4(8) * c4(8);
+        let even = allocation_bound(&films(&|_| 0.1), full).unwrap();
+        assert!((even - 1.0).abs() < 1e-6, "{even}");
+        let quarter = allocation_bound(&films(&|p| if p < 4 { 0.1 } else { 0.0 }), full).unwrap();
+        assert!((quarter - 0.25 / correction).abs() < 1e-6, "{quarter}");
+        // Noise in every pixel but unequal: strictly between.
+        let ramp = allocation_bound(&films(&|p| 0.01 * (1 + p) as f32), full).unwrap();
+        assert!(ramp > quarter && ramp < even, "{ramp}");
+        assert_eq!(allocation_bound(&films(&|_| 0.0), full), None);
+        assert_eq!(allocation_bound(&films(&|_| 0.1)[..1], full), None);
     }
 
     /// The uniform time at an error is interpolated in log-log between the runs around it, and
@@ -316,12 +445,14 @@ mod tests {
         let csv = csv_text(&AdaptiveStudy {
             uniform: u,
             adaptive: vec![run],
+            bound: Some(0.25),
         });
-        assert_eq!(csv.lines().count(), 5);
+        assert_eq!(csv.lines().count(), 6);
         assert!(csv
             .lines()
-            .last()
+            .nth(4)
             .unwrap()
             .starts_with("adaptive,0.01,4,1.500,"));
+        assert_eq!(csv.lines().last(), Some("best_allocation,,,,,,,,,0.250000"));
     }
 }
