@@ -53,6 +53,14 @@ pub fn orthonormal_basis(n: Vec3) -> (Vec3, Vec3) {
     (t, bt)
 }
 
+/// `v`, given in the frame of [`orthonormal_basis`] of the unit normal `n` (with `n` its z
+/// axis), in world space.
+#[inline]
+pub fn local_to_world(n: Vec3, v: Vec3) -> Vec3 {
+    let (t, b) = orthonormal_basis(n);
+    v.x * t + v.y * b + v.z * n
+}
+
 /// Mirror reflection of the incoming direction `d` (pointing towards the surface) about the unit
 /// normal `n`; the result points away from the surface on the side `d` came from.
 #[inline]

@@ -31,7 +31,7 @@
 //! `ka` and the scene's ambient light belong to Whitted shading and are not used here.
 
 use crate::material::{highlight, Material};
-use crate::math::{fresnel_dielectric, orthonormal_basis, reflect, refract, Vec2, Vec3};
+use crate::math::{fresnel_dielectric, local_to_world, reflect, refract, Vec2, Vec3};
 use crate::sampling::blinn_phong_half_vector;
 
 use std::f32::consts::{FRAC_1_PI, PI};
@@ -55,9 +55,8 @@ pub struct BsdfSample {
 /// back along the incoming ray (away from the surface).
 #[derive(Debug, Clone, Copy)]
 pub struct Bsdf {
-    /// Shading frame: `n` faces the side the ray came from.
-    t: Vec3,
-    b: Vec3,
+    /// Shading normal, facing the side the ray came from (sampled directions are mapped from
+    /// its [`local_to_world`] frame).
     n: Vec3,
     /// Geometric normal, facing the side the ray came from.
     ng: Vec3,
@@ -109,10 +108,7 @@ impl Bsdf {
         let (sd, sg) = (diffuse.element_sum(), glossy.element_sum());
         let exponent = material.exponent.max(0.0);
         let n = if ns.dot(ng) > 0.0 { ns } else { ng };
-        let (t, b) = orthonormal_basis(n);
         Bsdf {
-            t,
-            b,
             n,
             ng,
             diffuse,
@@ -221,7 +217,7 @@ impl Bsdf {
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         if u_lobe < self.mirror {
             if self.mirror_exponent.is_finite() {
-                let h = self.world(blinn_phong_half_vector(self.mirror_exponent, u));
+                let h = local_to_world(self.n, blinn_phong_half_vector(self.mirror_exponent, u));
                 return self.scattered(wo, 2.0 * wo.dot(h) * h - wo);
             }
             return Some(BsdfSample {
@@ -257,13 +253,13 @@ impl Bsdf {
         }
         let v = ((u_lobe - self.mirror - self.glass) / self.smooth).clamp(0.0, 1.0);
         if v < self.p_glossy {
-            let h = self.world(blinn_phong_half_vector(self.exponent, u));
+            let h = local_to_world(self.n, blinn_phong_half_vector(self.exponent, u));
             return self.scattered(wo, 2.0 * wo.dot(h) * h - wo);
         }
         // Cosine-weighted hemisphere (Malley's method).
         let d = crate::sampling::concentric_disk(u);
         let z = (1.0 - d.length_squared()).max(0.0).sqrt();
-        let wi = self.world(Vec3::new(d.x, d.y, z));
+        let wi = local_to_world(self.n, Vec3::new(d.x, d.y, z));
         if self.p_glossy > 0.0 || self.rough_mirror() {
             return self.scattered(wo, wi);
         }
@@ -309,10 +305,6 @@ impl Bsdf {
     #[inline]
     pub fn cos(&self, wi: Vec3) -> f32 {
         self.n.dot(wi).max(0.0)
-    }
-
-    fn world(&self, v: Vec3) -> Vec3 {
-        v.x * self.t + v.y * self.b + v.z * self.n
     }
 }
 

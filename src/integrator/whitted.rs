@@ -55,7 +55,7 @@ use crate::accel::aabb::Aabb;
 use crate::accel::{Accel, Beam};
 use crate::light::Light;
 use crate::material::{highlight, Reflection};
-use crate::math::{fresnel_dielectric, orthonormal_basis, reflect, refract, Vec2, Vec3};
+use crate::math::{fresnel_dielectric, local_to_world, reflect, refract, Vec2, Vec3};
 use crate::ray::{Hit, Ray, SpawnPoints};
 use crate::sampling::{blinn_phong_half_vector, Method, SampleKey};
 use crate::scene::{RenderMode, Scene};
@@ -397,9 +397,8 @@ impl<'a> Whitted<'a> {
                 // Tracing", SIGGRAPH 1984): one reflected ray per camera sample, about a half
                 // vector drawn from the mirror's lobe, stratified over the pixel's samples.
                 let u = key.padded(Method::Sobol, ROUGH_MIRROR_DIMENSION, 0, 1);
-                let (t, b) = orthonormal_basis(ns);
-                let h = blinn_phong_half_vector(material.mirror_exponent, u);
-                let blurred = reflect(ray.dir, h.x * t + h.y * b + h.z * ns).normalize();
+                let h = local_to_world(ns, blinn_phong_half_vector(material.mirror_exponent, u));
+                let blurred = reflect(ray.dir, h).normalize();
                 if blurred.dot(n) > 0.0 {
                     r = blurred; // else the mirror direction, rather than into the surface
                 }
