@@ -11,8 +11,9 @@
 //! - `sobol`: the first two dimensions of the Sobol sequence with hash-based Owen scrambling
 //!   (Burley, "Practical Hash-based Owen Scrambling", JCGT 9(4), 2020), the points of the
 //!   `sobol_burley` crate (its shuffle and scrambling, with the Sobol matrices applied from byte
-//!   tables: [`sobol4`] is the crate's `sample_4d` bit for bit, in half the time). Any power-of-two prefix of `2^m` points has one point in every elementary interval of
-//!   area `2^-m` (a (0,m,2)-net), and the scrambling keeps that while randomising the points.
+//!   tables: [`sobol4`] is the crate's `sample_4d` bit for bit, in half the time). Any
+//!   power-of-two prefix of `2^m` points has one point in every elementary interval of area
+//!   `2^-m` (a (0,m,2)-net), and the scrambling keeps that while randomising the points.
 //!   Each 2D set (a pixel's anti-aliasing pattern, its lens pattern, the shadow rays towards one
 //!   light at one shading point) gets its own seed from the same hash as the other methods, and
 //!   the crate's seeded nested shuffle of the index makes sets with different seeds statistically

@@ -492,7 +492,7 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             "best allocation: {b:.2}× uniform's samples at equal MSE (each pixel's samples in \
              proportion to its noise, measured by {} renders of {} spp)",
             study::adaptive::VARIANCE_RENDERS,
-            study::adaptive::VARIANCE_SAMPLES.min(options.max_samples)
+            result.variance_samples
         );
     }
     Ok(())

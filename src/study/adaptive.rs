@@ -68,12 +68,14 @@ pub struct AdaptiveStudy {
     pub adaptive: Vec<AdaptiveRun>,
     /// [`allocation_bound`] of the scene over the study's region: no adaptive run can do better.
     pub bound: Option<f64>,
+    /// Pixel samples in each of the [`VARIANCE_RENDERS`] renders the bound was measured from.
+    pub variance_samples: u32,
 }
 
 /// Renders, under seeds of their own, of [`VARIANCE_SAMPLES`] uniform Sobol pixel samples each:
 /// the spread of their pixels gives each pixel's variance for [`allocation_bound`].
 pub const VARIANCE_RENDERS: u64 = 8;
-pub const VARIANCE_SAMPLES: u32 = 16;
+const VARIANCE_SAMPLES: u32 = 16;
 /// The first of the variance renders' seeds (the runs use `--seed`, the reference its own).
 const VARIANCE_SEED: u64 = 0x0a11_0ca7_e000;
 
@@ -93,24 +95,22 @@ pub fn allocation_bound(films: &[Film], region: Region) -> Option<f64> {
     if k < 2 {
         return None;
     }
-    let (mut sum_sigma, mut sum_var, mut n) = (0.0f64, 0.0f64, 0.0f64);
+    let (mut sum_sigma, mut sum_var) = (0.0f64, 0.0f64);
     for y in region.y..region.y + region.height {
         for x in region.x..region.x + region.width {
-            let values: Vec<[f64; 3]> = films
-                .iter()
-                .map(|f| f.get(x, y).to_array().map(f64::from))
-                .collect();
             let var: f64 = (0..3)
                 .map(|c| {
-                    let mean = values.iter().map(|v| v[c]).sum::<f64>() / k as f64;
-                    values.iter().map(|v| (v[c] - mean).powi(2)).sum::<f64>() / (k - 1) as f64
+                    let value = |f: &Film| f64::from(f.get(x, y)[c]);
+                    let mean = films.iter().map(value).sum::<f64>() / k as f64;
+                    let squares = films.iter().map(|f| (value(f) - mean).powi(2));
+                    squares.sum::<f64>() / (k - 1) as f64
                 })
                 .sum();
             sum_sigma += var.sqrt();
             sum_var += var;
-            n += 1.0;
         }
     }
+    let n = region.width as f64 * region.height as f64;
     if sum_var.is_nan() || sum_var <= 0.0 {
         return None;
     }
@@ -252,6 +252,7 @@ pub fn run_adaptive_study(
         uniform,
         adaptive,
         bound,
+        variance_samples,
     })
 }
 
@@ -446,6 +447,7 @@ mod tests {
             uniform: u,
             adaptive: vec![run],
             bound: Some(0.25),
+            variance_samples: 16,
         });
         assert_eq!(csv.lines().count(), 6);
         assert!(csv
