@@ -403,6 +403,7 @@ fn built_name(accel: &Accel) -> &'static str {
     match accel {
         Accel::List => "list",
         Accel::Bvh(_) => "bvh",
+        Accel::Bvh4(_) => "bvh4",
     }
 }
 
@@ -454,6 +455,7 @@ fn table_row(
         (Accel::Bvh(_), AccelKind::Median) => "median",
         (Accel::Bvh(_), AccelKind::Flat) => "flat",
         (Accel::Bvh(_), _) => "sah",
+        (Accel::Bvh4(_), _) => "sah4",
         (a, _) => built_name(a),
     };
     let render_options = RenderOptions {
@@ -778,18 +780,14 @@ impl SetResult {
     }
 }
 
-/// Results of the throughput benchmark on one grid.
+/// Results of the throughput benchmark on one grid with one accelerator.
 #[derive(Debug, Clone)]
-pub struct Throughput {
-    pub g: u32,
-    pub s: u32,
-    pub triangles: usize,
+pub struct TreeThroughput {
+    pub kind: AccelKind,
     pub build: Duration,
-    pub build_median_split: Duration,
     pub accel_bytes: usize,
     /// Of `accel_bytes`, the leaves' (primitive order and SIMD blocks).
     pub leaf_bytes: usize,
-    pub primitive_bytes: usize,
     pub nodes: usize,
     pub depth: usize,
     pub sets: Vec<SetResult>,
@@ -799,10 +797,27 @@ pub struct Throughput {
     pub render_rays: u64,
 }
 
-/// Runs the throughput benchmark on the `g×g`, `s×s` grid: SAH build (median of `runs`, or one
-/// build if `runs` is 0), each ray set on one thread and on the current pool (medians of `runs`),
-/// and a full render on one thread and on the pool. With `export`, the grid's triangles and ray
-/// sets are first written to that folder (see `export_grid`), for other tracers to trace.
+/// Results of the throughput benchmark on one grid.
+#[derive(Debug, Clone)]
+pub struct Throughput {
+    pub g: u32,
+    pub s: u32,
+    pub triangles: usize,
+    pub build_median_split: Duration,
+    pub primitive_bytes: usize,
+    /// One entry per tree of [`THROUGHPUT_TREES`].
+    pub trees: Vec<TreeThroughput>,
+}
+
+/// The trees `raytracer bench --rays` measures: the binary SAH tree and its four-wide collapse.
+pub const THROUGHPUT_TREES: [AccelKind; 2] = [AccelKind::Sah, AccelKind::Sah4];
+
+/// Runs the throughput benchmark on the `g×g`, `s×s` grid: for each tree of
+/// [`THROUGHPUT_TREES`], its build (median of `runs`, or one build if `runs` is 0), each ray set
+/// on one thread and on the current pool (medians of `runs`), and a full render on one thread
+/// and on the pool; and the median-split build's time. Every tree traces the same rays. With
+/// `export`, the grid's triangles and ray sets are first written to that folder (see
+/// `export_grid`), for other tracers to trace.
 pub fn throughput(
     g: u32,
     s: u32,
@@ -811,64 +826,77 @@ pub fn throughput(
     export: Option<&Path>,
 ) -> Result<Throughput, String> {
     let scene = sphere_grid(g, s, 640, 480);
-    let (build, accel) = timed(runs, || {
-        Accel::build(&scene.primitives, AccelKind::Sah, leaf_size)
-    });
     let (build_median_split, _) = timed(runs, || {
         Accel::build(&scene.primitives, AccelKind::Median, leaf_size)
     });
-    let sets = ray_sets(&scene, &accel, grid_light(g), 0);
-    if let Some(dir) = export {
-        export_grid(dir, (g, s), &scene, &sets)?;
+    let mut sets = None;
+    let mut trees = Vec::new();
+    for kind in THROUGHPUT_TREES {
+        let (build, accel) = timed(runs, || Accel::build(&scene.primitives, kind, leaf_size));
+        let sets = sets.get_or_insert_with(|| ray_sets(&scene, &accel, grid_light(g), 0));
+        if let (Some(dir), None) = (export, trees.first()) {
+            export_grid(dir, (g, s), &scene, sets)?;
+        }
+        trees.push(tree_throughput(&scene, kind, build, &accel, sets, runs));
     }
+    Ok(Throughput {
+        g,
+        s,
+        triangles: triangle_count(&scene),
+        build_median_split,
+        primitive_bytes: primitive_bytes(&scene),
+        trees,
+    })
+}
+
+/// The ray sets and renders of [`throughput`] with one built tree.
+fn tree_throughput(
+    scene: &Scene,
+    kind: AccelKind,
+    build: Duration,
+    accel: &Accel,
+    sets: &RaySets,
+    runs: usize,
+) -> TreeThroughput {
     let mut results = Vec::new();
-    for kind in RayKind::ALL {
-        let (single, hits) = timed(runs, || trace_set(&scene, &accel, &sets, kind, false));
-        let (parallel, _) = timed(runs, || trace_set(&scene, &accel, &sets, kind, true));
+    for ray_kind in RayKind::ALL {
+        let (single, hits) = timed(runs, || trace_set(scene, accel, sets, ray_kind, false));
+        let (parallel, _) = timed(runs, || trace_set(scene, accel, sets, ray_kind, true));
         results.push(SetResult {
-            kind,
-            rays: sets.len(kind),
+            kind: ray_kind,
+            rays: sets.len(ray_kind),
             hits,
             single,
             parallel,
         });
     }
-    let area = with_lights(&scene, LightVariant::Area);
-    let options = RenderOptions::default();
-    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build();
-    let (render_single, out) = match one {
-        Ok(pool) => timed(runs, || {
-            pool.install(|| {
-                render_with_accel(&area, &accel, &options)
-                    .expect("the pixel buffers of a loaded scene fit in memory")
-            })
-        }),
-        Err(_) => timed(runs, || {
-            render_with_accel(&area, &accel, &options)
-                .expect("the pixel buffers of a loaded scene fit in memory")
-        }),
+    let area = with_lights(scene, LightVariant::Area);
+    let options = RenderOptions {
+        accel: kind,
+        ..RenderOptions::default()
     };
-    let (render_parallel, _) = timed(runs, || {
-        render_with_accel(&area, &accel, &options)
+    let render = || {
+        render_with_accel(&area, accel, &options)
             .expect("the pixel buffers of a loaded scene fit in memory")
-    });
+    };
+    let (render_single, out) = match rayon::ThreadPoolBuilder::new().num_threads(1).build() {
+        Ok(pool) => timed(runs, || pool.install(render)),
+        Err(_) => timed(runs, render),
+    };
+    let (render_parallel, _) = timed(runs, render);
     let stats = accel.stats().unwrap_or_default();
-    Ok(Throughput {
-        g,
-        s,
-        triangles: triangle_count(&scene),
+    TreeThroughput {
+        kind,
         build,
-        build_median_split,
         accel_bytes: accel.memory_bytes(),
         leaf_bytes: accel.leaf_bytes(),
-        primitive_bytes: primitive_bytes(&scene),
         nodes: stats.nodes,
         depth: stats.depth,
         sets: results,
         render_single,
         render_parallel,
         render_rays: out.counts.total(),
-    })
+    }
 }
 
 // ---------------------------------------------------------------------------------------------

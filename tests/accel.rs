@@ -1,11 +1,12 @@
-//! Differential test of the accelerators: every BVH builder (median, SAH, at several leaf sizes,
+//! Differential test of the accelerators: every BVH builder (median, SAH, four-wide SAH, at
+//! several leaf sizes,
 //! and `auto`) must give exactly the answers of testing every primitive (`Accel::List`): the same
 //! closest primitive with bit-identical `t` and barycentrics, and the same any-hit answer, on
 //! random, grazing, axis-parallel and edge-aimed rays, over meshes and mixed scenes, including
 //! empty scenes, single primitives, degenerate triangles and duplicated primitives (where the
 //! lower primitive index wins a tie in `t`), and with infinite planes, which no tree holds.
 
-use raytracer::accel::{Accel, AccelKind, Bvh};
+use raytracer::accel::{Accel, AccelKind, Bvh, Bvh4};
 use raytracer::geometry::{Candidate, Cylinder, Plane, Primitive, Shape, Sphere, Triangle};
 use raytracer::math::{next_float_up, Vec3};
 use raytracer::ray::Ray;
@@ -271,6 +272,7 @@ fn accelerators(prims: &[Primitive]) -> Vec<(String, Accel)> {
             Accel::build(prims, AccelKind::Median, 4),
         ),
         ("sah".to_string(), Accel::build(prims, AccelKind::Sah, 4)),
+        ("sah4".to_string(), Accel::build(prims, AccelKind::Sah4, 4)),
     ];
     for leaf in [1, 2, 8] {
         v.push((
@@ -280,6 +282,10 @@ fn accelerators(prims: &[Primitive]) -> Vec<(String, Accel)> {
         v.push((
             format!("sah leaf {leaf}"),
             Accel::Bvh(Bvh::build_sah(prims, leaf)),
+        ));
+        v.push((
+            format!("sah4 leaf {leaf}"),
+            Accel::Bvh4(Bvh4::build(prims, leaf)),
         ));
     }
     v

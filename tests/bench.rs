@@ -8,7 +8,7 @@ use std::process::Command;
 use common::repo;
 use raytracer::accel::AUTO_MIN_PRIMITIVES;
 
-const ACCELS: [&str; 5] = ["auto", "none", "flat", "median", "sah"];
+const ACCELS: [&str; 6] = ["auto", "none", "flat", "median", "sah", "sah4"];
 
 #[test]
 fn quick_table_has_every_scene_light_and_accelerator() {
@@ -83,12 +83,26 @@ fn quick_ray_throughput_reports_every_set() {
         .expect("run raytracer bench --rays");
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{stdout}");
+    // Every tree traces the same rays: the same number of hits in each set.
     for set in ["primary", "shadow", "incoherent", "render"] {
-        assert!(
-            stdout
+        let fields = |accel: &str| -> Vec<String> {
+            let line = stdout
                 .lines()
-                .any(|l| l.contains("G2S8") && l.contains(set)),
-            "{set} missing:\n{stdout}"
+                .find(|l| {
+                    let f: Vec<&str> = l.split_whitespace().collect();
+                    f.first() == Some(&"G2S8") && f.get(2) == Some(&accel) && f.contains(&set)
+                })
+                .unwrap_or_else(|| panic!("{set} with {accel} missing:\n{stdout}"));
+            line.split_whitespace().map(str::to_string).collect()
+        };
+        let (sah, sah4) = (fields("sah"), fields("sah4"));
+        // grid tris accel build_ms median_build_ms bytes_per_tri set rays hits … (the render
+        // row has no hits)
+        let counts = if set == "render" { 7..8 } else { 7..9 };
+        assert_eq!(
+            sah[counts.clone()],
+            sah4[counts],
+            "{set}: ray or hit counts differ"
         );
     }
 }
@@ -126,11 +140,16 @@ fn exported_rays_are_the_benchmarks_rays() {
         read("tris", 9).len(),
         raytracer::bench::sphere_grid_triangles(2, 8)
     );
-    let primary_hits: usize = std::fs::read_to_string(&csv)
-        .unwrap()
+    let csv = std::fs::read_to_string(&csv).unwrap();
+    let hits_column = csv
+        .lines()
+        .next()
+        .and_then(|header| header.split(',').position(|h| h == "hits"))
+        .expect("the CSV has a hits column");
+    let primary_hits: usize = csv
         .lines()
         .find(|l| l.contains(",primary,"))
-        .and_then(|l| l.split(',').nth(7))
+        .and_then(|l| l.split(',').nth(hits_column))
         .and_then(|h| h.parse().ok())
         .expect("the CSV's primary row gives its hits");
     for (what, width, rays) in [

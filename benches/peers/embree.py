@@ -118,30 +118,34 @@ def main():
     ours = {}
     with open(ours_csv) as f:
         for row in csv.DictReader(f):
-            ours.setdefault(row["grid"], {})[row["set"]] = row
+            ours.setdefault(row["grid"], {}).setdefault(row["accel"], {})[row["set"]] = row
 
     print("Embree 4 (embreex %s) and raytracer, one thread each on CPU %d, medians of %d runs\n"
           % (embreex_version(), cpu, args.runs))
-    print("| grid | triangles | set | raytracer Mrays/s | Embree Mrays/s | ratio | hits (ours / Embree) |")
-    print("|---|---:|---|---:|---:|---:|---|")
+    print("| grid | triangles | set | Embree Mrays/s | raytracer tree | Mrays/s | ratio | hits (ours / Embree) |")
+    print("|---|---:|---|---:|---|---:|---:|---|")
     builds = []
-    for grid, rows in ours.items():
+    for grid, trees in ours.items():
         g, s = grid[1:].split("S")
         prefix = os.path.join(tmp, "grid_G%s_S%s" % (g, s))
         e = embree_grid(prefix, args.runs)
         for name in ("primary", "shadow", "incoherent"):
-            r = rows[name]
-            mine = float(r["mrays_1t"])
             theirs = e[name]["rays"] / e[name]["s"] / 1e6
-            print("| %s | %d | %s | %.2f | %.2f | %.2f× | %s / %d |"
-                  % (grid, e["triangles"], name, mine, theirs, mine / theirs, r["hits"], e[name]["hits"]))
-        first = next(iter(rows.values()))
-        builds.append((grid, float(first["sah_build_ms"]), e["build_s"] * 1e3, float(first["bytes_per_tri"])))
+            for accel, rows in trees.items():
+                r = rows[name]
+                mine = float(r["mrays_1t"])
+                print("| %s | %d | %s | %.2f | %s | %.2f | %.2f× | %s / %d |"
+                      % (grid, e["triangles"], name, theirs, accel, mine, mine / theirs,
+                         r["hits"], e[name]["hits"]))
+        for accel, rows in trees.items():
+            first = next(iter(rows.values()))
+            builds.append((grid, accel, float(first["build_ms"]), e["build_s"] * 1e3,
+                           float(first["bytes_per_tri"])))
         sys.stdout.flush()
-    print("\n| grid | raytracer build ms | Embree build ms | ours / Embree | raytracer bytes per triangle |")
-    print("|---|---:|---:|---:|---:|")
-    for grid, mine, theirs, bpt in builds:
-        print("| %s | %.1f | %.1f | %.2f× | %.1f |" % (grid, mine, theirs, mine / theirs, bpt))
+    print("\n| grid | raytracer tree | build ms | Embree build ms | ours / Embree | raytracer bytes per triangle |")
+    print("|---|---|---:|---:|---:|---:|")
+    for grid, accel, mine, theirs, bpt in builds:
+        print("| %s | %s | %.1f | %.1f | %.2f× | %.1f |" % (grid, accel, mine, theirs, mine / theirs, bpt))
     for name in os.listdir(tmp):
         os.remove(os.path.join(tmp, name))
     os.rmdir(tmp)

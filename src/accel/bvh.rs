@@ -14,11 +14,8 @@
 //!   Computer 6(3), 1990, give the cost model). When all centroids coincide, no plane separates
 //!   them and the node is split at the middle of its list instead.
 //!
-//! Primitive indices are reordered so that each leaf's are contiguous (`order`): its triangles,
-//! then its spheres, then its other primitives, each kind starting at a multiple of four. Every
-//! four entries of `order` are one [`Block`]: triangles and spheres copied into
-//! structure-of-arrays blocks ([`Triangle4`], [`Sphere4`]) and tested four at a time in SIMD
-//! lanes, with the bits of the scalar tests, and other shapes tested one by one.
+//! Primitive indices are reordered so that each leaf's are contiguous, in blocks of four tested in
+//! SIMD lanes ([`super::leaves`]).
 //!
 //! Unbounded primitives (infinite planes, see [`crate::geometry::Shape::is_bounded`]) have no box
 //! to put in a node: they are kept out of the tree in a list of their own (`unbounded`), which
@@ -32,11 +29,12 @@ use glam::{Vec3A, Vec4, Vec4Swizzles};
 
 use super::aabb::{slab, Aabb};
 use super::beam::Beam;
-use super::kernels::{Hits4, Ray4, Sphere4, Triangle4};
+use super::kernels::Ray4;
+use super::leaves::{Best, Leaves};
 use super::stack::Stack;
 use super::{any_among, gather};
-use crate::geometry::{Candidate, Primitive, Shape};
-use crate::math::{next_float_up, Vec3};
+use crate::geometry::{Candidate, Primitive};
+use crate::math::Vec3;
 use crate::ray::PreparedRay;
 
 /// Traversal stack entries. The builders keep every tree at most `MAX_SAH_DEPTH + 33` levels deep
@@ -102,11 +100,20 @@ impl Default for BvhOptions {
 /// A node as the builder makes it. For a leaf `count > 0` and `index` is its first entry in
 /// `order`; for an interior node `count == 0` and its children are the two nodes of pair `index`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-struct Node {
-    lo: Vec3A,
-    hi: Vec3A,
-    index: u32,
-    count: u32,
+pub(super) struct Node {
+    pub lo: Vec3A,
+    pub hi: Vec3A,
+    pub index: u32,
+    pub count: u32,
+}
+
+impl Node {
+    pub fn reference(&self) -> NodeRef {
+        NodeRef {
+            index: self.index,
+            count: self.count,
+        }
+    }
 }
 
 /// The two children of an interior node: 32 bytes each (a box and two counts), stored interleaved
@@ -144,39 +151,9 @@ impl NodePair {
 
 /// A node reference in traversal: `(index, count)` as in [`Node`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct NodeRef {
-    index: u32,
-    count: u32,
-}
-
-/// The closest hit so far.
-struct Best {
-    /// Its `t` (the query's `t_max` before any hit).
-    t: f32,
-    /// Its primitive, or [`Best::NONE`].
-    index: u32,
-    candidate: Candidate,
-}
-
-impl Best {
-    const NONE: u32 = u32::MAX;
-
-    #[inline(always)]
-    fn new(t_max: f32) -> Best {
-        Best {
-            t: t_max,
-            index: Best::NONE,
-            candidate: Candidate {
-                t: t_max,
-                aux: [0.0; 2],
-            },
-        }
-    }
-
-    #[inline(always)]
-    fn hit(&self) -> Option<(u32, Candidate)> {
-        (self.index != Best::NONE).then_some((self.index, self.candidate))
-    }
+pub(super) struct NodeRef {
+    pub index: u32,
+    pub count: u32,
 }
 
 /// The per-ray constants of the two-box test [`Bvh::pair_hit`].
@@ -224,11 +201,8 @@ pub struct Bvh {
     root: Option<(Vec3A, Vec3A, NodeRef)>,
     /// Every other node, in sibling pairs.
     pairs: Vec<NodePair>,
-    /// Primitive indices, leaf by leaf (see the module docs); the entries that pad a kind to a
-    /// multiple of four are [`PAD`].
-    order: Vec<u32>,
-    /// Block `j` holds the primitives of entries `4j..4j + 4` of `order`.
-    blocks: Vec<Block>,
+    /// The leaves' primitives, in blocks.
+    leaves: Leaves,
     /// The unbounded primitives, in index order: outside the tree, tested by every query.
     unbounded: Vec<u32>,
 }
@@ -511,106 +485,18 @@ fn median_split(refs: &mut [Ref], axis: usize) -> usize {
     mid
 }
 
-/// The entries of `order` that hold no primitive.
-const PAD: u32 = u32::MAX;
-
-/// Four entries of `order`, as a leaf tests them.
-#[derive(Debug, Clone, Copy)]
-enum Block {
-    Triangles(Triangle4),
-    Spheres(Sphere4),
-    /// Other shapes, tested one by one: bit `l` of `lanes` is set where entry `l` holds one.
-    Scalar {
-        lanes: u32,
-    },
+/// The binary tree as the builders make it, before its nodes are laid out for traversal: node 0
+/// is the root, and the children of an interior node with `index` k are nodes `1 + 2k` and
+/// `2 + 2k`. Leaves are already packed into blocks.
+pub(super) struct BinaryTree {
+    pub nodes: Vec<Node>,
+    pub leaves: Leaves,
+    /// The unbounded primitives, in index order.
+    pub unbounded: Vec<u32>,
 }
 
-impl Block {
-    /// What the lanes hit with `t < t_max`; [`Hits4::scalar`] also holds every lane the scalar
-    /// test must decide.
-    #[inline(always)]
-    fn intersect(&self, r4: &Ray4, t_max: f32) -> Hits4 {
-        match self {
-            Block::Triangles(b) => b.intersect(r4, t_max),
-            Block::Spheres(b) => b.intersect(r4, t_max),
-            Block::Scalar { lanes } => Hits4 {
-                scalar: *lanes,
-                ..Hits4::NONE
-            },
-        }
-    }
-}
-
-/// The set bits of `mask`, lowest first.
-#[inline(always)]
-fn lanes(mut mask: u32) -> impl Iterator<Item = usize> {
-    std::iter::from_fn(move || {
-        (mask != 0).then(|| {
-            let l = mask.trailing_zeros() as usize;
-            mask &= mask - 1;
-            l
-        })
-    })
-}
-
-/// The kinds of primitive a leaf keeps apart, in their order there.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
-    Triangle,
-    Sphere,
-    Other,
-}
-
-fn kind(p: &Primitive) -> Kind {
-    match p.shape {
-        Shape::Triangle(_) => Kind::Triangle,
-        Shape::Sphere(_) => Kind::Sphere,
-        _ => Kind::Other,
-    }
-}
-
-/// Lays out the leaves of `nodes` (entries of `order`) in blocks: each leaf's triangles, spheres
-/// and other primitives, each kind starting at a multiple of four. Returns the new order and
-/// its blocks; the leaves' index and count are updated to their new span (padding included).
-fn pack_leaves(prims: &[Primitive], nodes: &mut [Node], order: &[u32]) -> (Vec<u32>, Vec<Block>) {
-    let mut packed = Vec::with_capacity(order.len());
-    for node in nodes.iter_mut().filter(|n| n.count > 0) {
-        // `packed` stays a multiple of four long between kinds and between leaves.
-        let leaf = &order[node.index as usize..][..node.count as usize];
-        node.index = packed.len() as u32;
-        for k in [Kind::Triangle, Kind::Sphere, Kind::Other] {
-            packed.extend(leaf.iter().filter(|&&p| kind(&prims[p as usize]) == k));
-            packed.resize(packed.len().next_multiple_of(4), PAD);
-        }
-        node.count = packed.len() as u32 - node.index;
-    }
-    let blocks = packed
-        .chunks_exact(4)
-        .map(|c| {
-            let shape = |l: usize| (c[l] != PAD).then(|| &prims[c[l] as usize].shape);
-            let lanes = [0, 1, 2, 3].map(shape);
-            if lanes.iter().any(|s| matches!(s, Some(Shape::Triangle(_)))) {
-                Block::Triangles(Triangle4::new(lanes.map(|s| match s {
-                    Some(Shape::Triangle(t)) => Some(t),
-                    _ => None,
-                })))
-            } else if lanes.iter().any(|s| matches!(s, Some(Shape::Sphere(_)))) {
-                Block::Spheres(Sphere4::new(lanes.map(|s| match s {
-                    Some(Shape::Sphere(s)) => Some(s),
-                    _ => None,
-                })))
-            } else {
-                let lanes = (0..4).filter(|&l| c[l] != PAD).fold(0, |m, l| m | 1 << l);
-                Block::Scalar { lanes }
-            }
-        })
-        .collect();
-    (packed, blocks)
-}
-
-impl Bvh {
-    /// Builds a tree over `prims`. Fewer than `u32::MAX` primitives (the caller checks).
-    pub fn build(prims: &[Primitive], options: BvhOptions) -> Bvh {
+impl BinaryTree {
+    pub fn build(prims: &[Primitive], options: BvhOptions) -> BinaryTree {
         let unbounded: Vec<u32> = prims
             .iter()
             .enumerate()
@@ -644,7 +530,30 @@ impl Bvh {
         }
         let mut nodes = builder.nodes;
         let order: Vec<u32> = refs.iter().map(|r| r.index).collect();
-        let (order, blocks) = pack_leaves(prims, &mut nodes, &order);
+        let leaves = Leaves::pack(
+            prims,
+            &order,
+            nodes
+                .iter_mut()
+                .filter(|n| n.count > 0)
+                .map(|n| (&mut n.index, &mut n.count)),
+        );
+        BinaryTree {
+            nodes,
+            leaves,
+            unbounded,
+        }
+    }
+}
+
+impl Bvh {
+    /// Builds a tree over `prims`. Fewer than `u32::MAX` primitives (the caller checks).
+    pub fn build(prims: &[Primitive], options: BvhOptions) -> Bvh {
+        let BinaryTree {
+            nodes,
+            leaves,
+            unbounded,
+        } = BinaryTree::build(prims, options);
         let pairs = nodes
             .get(1..)
             .unwrap_or_default()
@@ -652,19 +561,9 @@ impl Bvh {
             .map(|c| NodePair::new(&c[0], &c[1]))
             .collect();
         Bvh {
-            root: nodes.first().map(|n| {
-                (
-                    n.lo,
-                    n.hi,
-                    NodeRef {
-                        index: n.index,
-                        count: n.count,
-                    },
-                )
-            }),
+            root: nodes.first().map(|n| (n.lo, n.hi, n.reference())),
             pairs,
-            order,
-            blocks,
+            leaves,
             unbounded,
         }
     }
@@ -722,8 +621,7 @@ impl Bvh {
 
     /// Bytes of the leaves: the primitive order and the SIMD blocks.
     pub fn leaf_bytes(&self) -> usize {
-        self.blocks.capacity() * std::mem::size_of::<Block>()
-            + self.order.capacity() * std::mem::size_of::<u32>()
+        self.leaves.bytes()
     }
 
     /// The primitives kept outside the tree (unbounded shapes), in index order.
@@ -768,22 +666,6 @@ impl Bvh {
         (acc.cmple(exit).bitmask() & 3, acc.x, acc.y)
     }
 
-    /// The blocks of leaf `n` (which starts at a multiple of four).
-    #[inline(always)]
-    fn leaf_blocks(&self, n: NodeRef) -> &[Block] {
-        let start = n.index as usize;
-        &self.blocks[start / 4..(start + n.count as usize).div_ceil(4)]
-    }
-
-    /// The primitives of leaf `n`.
-    fn leaf(&self, n: NodeRef) -> impl Iterator<Item = u32> + '_ {
-        let start = n.index as usize;
-        self.order[start..start + n.count as usize]
-            .iter()
-            .copied()
-            .filter(|&p| p != PAD)
-    }
-
     /// Node count, leaf count, depth and largest leaf.
     pub fn stats(&self) -> BvhStats {
         let mut s = BvhStats {
@@ -798,92 +680,15 @@ impl Bvh {
             if n.count > 0 {
                 s.leaves += 1;
                 s.depth = s.depth.max(d);
-                s.max_leaf = s.max_leaf.max(self.leaf(n).count());
+                s.max_leaf = s
+                    .max_leaf
+                    .max(self.leaves.primitives(n.index, n.count).count());
             } else {
                 stack.push((self.child(n, 0), d + 1));
                 stack.push((self.child(n, 1), d + 1));
             }
         }
         s
-    }
-
-    /// Tests the primitives of leaf `n` for a closer hit than `best`. A tie in `t` goes to the
-    /// lower index: such a primitive may also hit at exactly `best.t`, so its bound is the next
-    /// float up.
-    ///
-    /// Blocks are tested four lanes at a time under the loosest bound, `next_float_up(best.t)`;
-    /// each lane hit is then held to its own bound, as the scalar test would have been (a lane's `t`
-    /// does not depend on the bound it was tested under).
-    #[inline(always)]
-    fn leaf_closest(
-        &self,
-        prims: &[Primitive],
-        r: &PreparedRay,
-        r4: &Ray4,
-        n: NodeRef,
-        best: &mut Best,
-    ) {
-        let start = n.index as usize;
-        let bound = |p: u32, best: &Best| {
-            if p < best.index && best.index != Best::NONE {
-                next_float_up(best.t)
-            } else {
-                best.t
-            }
-        };
-        for (j, block) in self.leaf_blocks(n).iter().enumerate() {
-            let base = start + 4 * j;
-            let h = block.intersect(r4, next_float_up(best.t));
-            let scalar = h.scalar;
-            for l in lanes(h.hit | scalar) {
-                let p = self.order[base + l];
-                let b = bound(p, best);
-                let c = if scalar & (1 << l) != 0 {
-                    prims[p as usize].shape.intersect_prepared(r, b)
-                } else {
-                    (h.t[l] < b).then(|| Candidate {
-                        t: h.t[l],
-                        aux: [h.b1[l], h.b2[l]],
-                    })
-                };
-                if let Some(c) = c {
-                    best.t = c.t;
-                    best.index = p;
-                    best.candidate = c;
-                }
-            }
-        }
-    }
-
-    /// Whether a primitive of leaf `n` accepted by `blocks` is hit before `t_max`.
-    #[inline(always)]
-    fn leaf_any(
-        &self,
-        prims: &[Primitive],
-        r: &PreparedRay,
-        r4: &Ray4,
-        n: NodeRef,
-        t_max: f32,
-        blocks: &mut impl FnMut(u32) -> bool,
-    ) -> bool {
-        let start = n.index as usize;
-        for (j, block) in self.leaf_blocks(n).iter().enumerate() {
-            let base = start + 4 * j;
-            let h = block.intersect(r4, t_max);
-            let scalar = h.scalar;
-            for l in lanes(h.hit | scalar) {
-                let p = self.order[base + l];
-                let hit = scalar & (1 << l) == 0
-                    || prims[p as usize]
-                        .shape
-                        .intersect_prepared(r, t_max)
-                        .is_some();
-                if hit && blocks(p) {
-                    return true;
-                }
-            }
-        }
-        false
     }
 
     /// See [`crate::accel::Accel::beam_candidates`]: the unbounded primitives, then the
@@ -909,7 +714,13 @@ impl Bvh {
         stack.push(root);
         while let Some(n) = stack.pop() {
             if n.count > 0 {
-                if !gather(beam, prims, self.leaf(n), limit, out) {
+                if !gather(
+                    beam,
+                    prims,
+                    self.leaves.primitives(n.index, n.count),
+                    limit,
+                    out,
+                ) {
                     return false;
                 }
                 continue;
@@ -945,22 +756,15 @@ impl Bvh {
         t_max: f32,
     ) -> Option<(u32, Candidate)> {
         let mut best = Best::new(t_max);
-        // In index order with a strict bound, the first of equal-t hits stays; a tree primitive
-        // of lower index at the same t still wins in `leaf_closest`.
-        for &p in &self.unbounded {
-            if let Some(c) = prims[p as usize].shape.intersect_prepared(r, best.t) {
-                best.t = c.t;
-                best.index = p;
-                best.candidate = c;
-            }
-        }
+        best.among(prims, &self.unbounded, r);
         let Some((lo, hi, root)) = self.root else {
             return best.hit();
         };
         if root.count > 0 {
             // A single leaf: no traversal.
             if slab(lo, hi, r, best.t).0 {
-                self.leaf_closest(prims, r, &Ray4::new(r), root, &mut best);
+                self.leaves
+                    .closest(prims, r, &Ray4::new(r), (root.index, root.count), &mut best);
             }
             return best.hit();
         }
@@ -1027,7 +831,8 @@ impl Bvh {
                     continue;
                 }
             } else {
-                self.leaf_closest(prims, r, &r4, n, &mut best);
+                self.leaves
+                    .closest(prims, r, &r4, (n.index, n.count), &mut best);
             }
             // Next subtree from the stack whose entry is not beyond the best hit: the same answer
             // the box test would give now, as its exit side passed when it was pushed.
@@ -1060,7 +865,14 @@ impl Bvh {
         };
         if root.count > 0 {
             return slab(lo, hi, r, t_max).0
-                && self.leaf_any(prims, r, &Ray4::new(r), root, t_max, &mut blocks);
+                && self.leaves.any(
+                    prims,
+                    r,
+                    &Ray4::new(r),
+                    (root.index, root.count),
+                    t_max,
+                    &mut blocks,
+                );
         }
         match r.negative.bitmask() {
             0 => self.any_in::<false, false, false>(prims, r, t_max, blocks),
@@ -1120,7 +932,10 @@ impl Bvh {
                     n = c1;
                     continue;
                 }
-            } else if self.leaf_any(prims, r, &r4, n, t_max, &mut blocks) {
+            } else if self
+                .leaves
+                .any(prims, r, &r4, (n.index, n.count), t_max, &mut blocks)
+            {
                 return true;
             }
             let Some(id) = stack.pop() else {
@@ -1134,6 +949,7 @@ impl Bvh {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::accel::leaves::PAD;
     use crate::geometry::{Shape, Sphere, Triangle};
     use crate::math::Vec3;
 
@@ -1178,7 +994,7 @@ mod tests {
     /// every box containing its contents, depth within the stack.
     fn check(bvh: &Bvh, prims: &[Primitive], leaf_size: usize) {
         let mut seen = vec![false; prims.len()];
-        for &p in bvh.order.iter().filter(|&&p| p != PAD) {
+        for &p in bvh.leaves.order.iter().filter(|&&p| p != PAD) {
             assert!(!seen[p as usize], "primitive {p} twice");
             assert!(prims[p as usize].shape.is_bounded());
             seen[p as usize] = true;
@@ -1195,8 +1011,8 @@ mod tests {
         let nodes = all_nodes(bvh);
         for (lo, hi, n) in &nodes {
             if n.count > 0 {
-                assert!(bvh.leaf(*n).count() <= leaf_size);
-                for p in bvh.leaf(*n) {
+                assert!(bvh.leaves.primitives(n.index, n.count).count() <= leaf_size);
+                for p in bvh.leaves.primitives(n.index, n.count) {
                     let b = prims[p as usize].shape.bounds();
                     assert!(contains(lo, hi, &b.min.to_array(), &b.max.to_array()));
                 }
@@ -1322,7 +1138,7 @@ mod tests {
                 .map(|(lo, hi, n)| {
                     let a = area(lo, hi) / root;
                     if n.count > 0 {
-                        a * b.leaf(n).count() as f32
+                        a * b.leaves.primitives(n.index, n.count).count() as f32
                     } else {
                         a * TRAVERSAL_COST
                     }

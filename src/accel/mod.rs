@@ -16,11 +16,14 @@
 pub mod aabb;
 pub mod beam;
 pub mod bvh;
+pub mod bvh4;
 pub mod kernels;
+mod leaves;
 pub mod stack;
 
 pub use beam::Beam;
 pub use bvh::{Bvh, BvhOptions, BvhStats, Split};
+pub use bvh4::Bvh4;
 
 use crate::geometry::{Candidate, Primitive, Shape};
 use crate::ray::{PreparedRay, Ray};
@@ -28,8 +31,8 @@ use crate::ray::{PreparedRay, Ray};
 /// Which accelerator to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum AccelKind {
-    /// The SAH BVH, except for scenes so small that testing every primitive in SIMD blocks is
-    /// as fast (fewer than [`AUTO_MIN_PRIMITIVES`]): then `flat`.
+    /// The four-wide SAH BVH, except for scenes so small that testing every primitive in SIMD
+    /// blocks is as fast (fewer than [`AUTO_MIN_PRIMITIVES`]): then `flat`.
     #[default]
     Auto,
     /// Test every primitive, one by one (the reference every other kind agrees with).
@@ -41,16 +44,19 @@ pub enum AccelKind {
     Median,
     /// The binned-SAH BVH.
     Sah,
+    /// The binned-SAH BVH collapsed to four children a node, tested in SIMD lanes.
+    Sah4,
 }
 
 impl AccelKind {
     /// Every kind, in the order the benchmark reports them.
-    pub const ALL: [AccelKind; 5] = [
+    pub const ALL: [AccelKind; 6] = [
         AccelKind::Auto,
         AccelKind::None,
         AccelKind::Flat,
         AccelKind::Median,
         AccelKind::Sah,
+        AccelKind::Sah4,
     ];
 
     pub fn name(self) -> &'static str {
@@ -60,6 +66,7 @@ impl AccelKind {
             AccelKind::Flat => "flat",
             AccelKind::Median => "median",
             AccelKind::Sah => "sah",
+            AccelKind::Sah4 => "sah4",
         }
     }
 }
@@ -69,7 +76,7 @@ impl AccelKind {
     pub fn resolved(self, primitives: usize) -> AccelKind {
         match self {
             AccelKind::Auto if primitives < AUTO_MIN_PRIMITIVES => AccelKind::Flat,
-            AccelKind::Auto => AccelKind::Sah,
+            AccelKind::Auto => AccelKind::Sah4,
             kind => kind,
         }
     }
@@ -90,8 +97,9 @@ impl std::str::FromStr for AccelKind {
             "flat" => Ok(AccelKind::Flat),
             "median" => Ok(AccelKind::Median),
             "sah" => Ok(AccelKind::Sah),
+            "sah4" => Ok(AccelKind::Sah4),
             other => Err(format!(
-                "unknown accelerator '{other}' (expected auto, none, flat, median or sah)"
+                "unknown accelerator '{other}' (expected auto, none, flat, median, sah or sah4)"
             )),
         }
     }
@@ -113,6 +121,7 @@ pub const AUTO_MIN_PRIMITIVES: usize = 16;
 pub enum Accel {
     List,
     Bvh(Bvh),
+    Bvh4(Bvh4),
 }
 
 impl Accel {
@@ -127,7 +136,8 @@ impl Accel {
             AccelKind::None => Accel::List,
             AccelKind::Flat => Accel::Bvh(Bvh::build_flat(prims)),
             AccelKind::Median => Accel::Bvh(Bvh::build_median(prims, leaf_size)),
-            AccelKind::Auto | AccelKind::Sah => Accel::Bvh(Bvh::build_sah(prims, leaf_size)),
+            AccelKind::Sah => Accel::Bvh(Bvh::build_sah(prims, leaf_size)),
+            AccelKind::Auto | AccelKind::Sah4 => Accel::Bvh4(Bvh4::build(prims, leaf_size)),
         }
     }
 
@@ -136,6 +146,7 @@ impl Accel {
         match self {
             Accel::List => 0,
             Accel::Bvh(b) => b.memory_bytes(),
+            Accel::Bvh4(b) => b.memory_bytes(),
         }
     }
 
@@ -144,6 +155,7 @@ impl Accel {
         match self {
             Accel::List => 0,
             Accel::Bvh(b) => b.leaf_bytes(),
+            Accel::Bvh4(b) => b.leaf_bytes(),
         }
     }
 
@@ -152,6 +164,7 @@ impl Accel {
         match self {
             Accel::List => None,
             Accel::Bvh(b) => Some(b.stats()),
+            Accel::Bvh4(b) => Some(b.stats()),
         }
     }
 
@@ -177,6 +190,7 @@ impl Accel {
                 best
             }
             Accel::Bvh(b) => b.closest(prims, &r, t_max),
+            Accel::Bvh4(b) => b.closest(prims, &r, t_max),
         }
     }
 
@@ -202,6 +216,7 @@ impl Accel {
                 .enumerate()
                 .any(|(i, p)| p.shape.intersect_prepared(&r, t_max).is_some() && blocks(i as u32)),
             Accel::Bvh(b) => b.any(prims, &r, t_max, blocks),
+            Accel::Bvh4(b) => b.any(prims, &r, t_max, blocks),
         }
     }
 
@@ -220,6 +235,7 @@ impl Accel {
         match self {
             Accel::List => gather(beam, prims, 0..prims.len() as u32, limit, out),
             Accel::Bvh(b) => b.beam_candidates(prims, beam, limit, out),
+            Accel::Bvh4(b) => b.beam_candidates(prims, beam, limit, out),
         }
     }
 

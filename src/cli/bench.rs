@@ -10,7 +10,6 @@ use std::time::Duration;
 
 use clap::Parser;
 
-use crate::accel::bvh::STACK_SIZE;
 use crate::bench::{
     crossover, default_scenes_dir, format_csv, format_table, row_fields, sphere_grid_triangles,
     table1, throughput, TableOptions, Throughput, TABLE_HEADER,
@@ -227,10 +226,11 @@ fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
 }
 
-const THROUGHPUT_HEADER: [&str; 12] = [
+const THROUGHPUT_HEADER: [&str; 13] = [
     "grid",
     "tris",
-    "sah_build_ms",
+    "accel",
+    "build_ms",
     "median_build_ms",
     "bytes_per_tri",
     "set",
@@ -243,82 +243,88 @@ const THROUGHPUT_HEADER: [&str; 12] = [
 ];
 
 fn throughput_rows(t: &Throughput, threads: usize) -> Vec<Vec<String>> {
-    let grid = format!("G{}S{}", t.g, t.s);
-    let head = vec![
-        grid,
-        t.triangles.to_string(),
-        format!("{:.1}", ms(t.build)),
-        format!("{:.1}", ms(t.build_median_split)),
-        format!(
-            "{:.1}",
-            (t.accel_bytes + t.primitive_bytes) as f64 / t.triangles as f64
-        ),
-    ];
-    let mut rows: Vec<Vec<String>> = t
-        .sets
-        .iter()
-        .map(|s| {
+    let mut rows = Vec::new();
+    for tree in &t.trees {
+        let head = vec![
+            format!("G{}S{}", t.g, t.s),
+            t.triangles.to_string(),
+            tree.kind.name().to_string(),
+            format!("{:.1}", ms(tree.build)),
+            format!("{:.1}", ms(t.build_median_split)),
+            format!(
+                "{:.1}",
+                (tree.accel_bytes + t.primitive_bytes) as f64 / t.triangles as f64
+            ),
+        ];
+        let row = |set: &str, rays: u64, hits: String, single: Duration, parallel: Duration| {
+            let mrays = |d: Duration| rays as f64 / d.as_secs_f64().max(1e-9) / 1e6;
             let mut row = head.clone();
             row.extend([
-                s.kind.name().to_string(),
-                s.rays.to_string(),
-                s.hits.to_string(),
-                format!("{:.2}", s.mrays(s.single)),
-                format!("{:.2}", s.mrays(s.parallel)),
+                set.to_string(),
+                rays.to_string(),
+                hits,
+                format!("{:.2}", mrays(single)),
+                format!("{:.2}", mrays(parallel)),
                 format!(
                     "{:.2}",
-                    s.single.as_secs_f64() / s.parallel.as_secs_f64().max(1e-12)
+                    single.as_secs_f64() / parallel.as_secs_f64().max(1e-12)
                 ),
                 threads.to_string(),
             ]);
             row
-        })
-        .collect();
-    let mrays = |d: Duration| t.render_rays as f64 / d.as_secs_f64().max(1e-9) / 1e6;
-    let mut row = head;
-    row.extend([
-        "render".into(),
-        t.render_rays.to_string(),
-        String::new(),
-        format!("{:.2}", mrays(t.render_single)),
-        format!("{:.2}", mrays(t.render_parallel)),
-        format!(
-            "{:.2}",
-            t.render_single.as_secs_f64() / t.render_parallel.as_secs_f64().max(1e-12)
-        ),
-        threads.to_string(),
-    ]);
-    rows.push(row);
+        };
+        for s in &tree.sets {
+            let hits = s.hits.to_string();
+            rows.push(row(
+                s.kind.name(),
+                s.rays as u64,
+                hits,
+                s.single,
+                s.parallel,
+            ));
+        }
+        rows.push(row(
+            "render",
+            tree.render_rays,
+            String::new(),
+            tree.render_single,
+            tree.render_parallel,
+        ));
+    }
     rows
 }
 
 fn print_throughput(t: &Throughput, threads: usize) {
     let tris = t.triangles as f64;
     outln!(
-        "  G={} S={}: {} triangles; SAH build {:.1} ms (median split {:.1} ms); {} nodes, depth {} \
-         (stack {}); memory {:.1} B/triangle = BVH {:.1} (nodes {:.1}, leaves {:.1}) + primitive \
-         records {:.1}",
+        "  G={} S={}: {} triangles, primitive records {:.1} B/triangle; median split build {:.1} ms",
         t.g,
         t.s,
         t.triangles,
-        ms(t.build),
-        ms(t.build_median_split),
-        t.nodes,
-        t.depth,
-        STACK_SIZE,
-        (t.accel_bytes + t.primitive_bytes) as f64 / tris,
-        t.accel_bytes as f64 / tris,
-        (t.accel_bytes - t.leaf_bytes) as f64 / tris,
-        t.leaf_bytes as f64 / tris,
         t.primitive_bytes as f64 / tris,
+        ms(t.build_median_split),
     );
-    for s in &t.sets {
+    for tree in &t.trees {
         outln!(
-            "    {:<10} {:>7} rays: {:>7.2} Mrays/s on 1 thread, {:>7.2} on {threads}",
-            s.kind.name(),
-            s.rays,
-            s.mrays(s.single),
-            s.mrays(s.parallel)
+            "  {}: build {:.1} ms; {} nodes, depth {}; memory {:.1} B/triangle = tree {:.1} \
+             (nodes {:.1}, leaves {:.1}) + primitive records",
+            tree.kind.name(),
+            ms(tree.build),
+            tree.nodes,
+            tree.depth,
+            (tree.accel_bytes + t.primitive_bytes) as f64 / tris,
+            tree.accel_bytes as f64 / tris,
+            (tree.accel_bytes - tree.leaf_bytes) as f64 / tris,
+            tree.leaf_bytes as f64 / tris,
         );
+        for s in &tree.sets {
+            outln!(
+                "    {:<10} {:>7} rays: {:>7.2} Mrays/s on 1 thread, {:>7.2} on {threads}",
+                s.kind.name(),
+                s.rays,
+                s.mrays(s.single),
+                s.mrays(s.parallel)
+            );
+        }
     }
 }
