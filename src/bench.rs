@@ -404,6 +404,7 @@ fn built_name(accel: &Accel) -> &'static str {
         Accel::List => "list",
         Accel::Bvh(_) => "bvh",
         Accel::Bvh4(_) => "bvh4",
+        Accel::Bvh8(_) => "bvh8",
     }
 }
 
@@ -456,6 +457,7 @@ fn table_row(
         (Accel::Bvh(_), AccelKind::Flat) => "flat",
         (Accel::Bvh(_), _) => "sah",
         (Accel::Bvh4(_), _) => "sah4",
+        (Accel::Bvh8(_), _) => "sah8",
         (a, _) => built_name(a),
     };
     let render_options = RenderOptions {
@@ -809,8 +811,9 @@ pub struct Throughput {
     pub trees: Vec<TreeThroughput>,
 }
 
-/// The trees `raytracer bench --rays` measures: the binary SAH tree and its four-wide collapse.
-pub const THROUGHPUT_TREES: [AccelKind; 2] = [AccelKind::Sah, AccelKind::Sah4];
+/// The trees `raytracer bench --rays` measures: the binary SAH tree and its four- and eight-wide
+/// collapses.
+pub const THROUGHPUT_TREES: [AccelKind; 3] = [AccelKind::Sah, AccelKind::Sah4, AccelKind::Sah8];
 
 /// Runs the throughput benchmark on the `g×g`, `s×s` grid: for each tree of
 /// [`THROUGHPUT_TREES`], its build (median of `runs`, or one build if `runs` is 0), each ray set

@@ -8,7 +8,7 @@ use std::process::Command;
 use common::repo;
 use raytracer::accel::AUTO_MIN_PRIMITIVES;
 
-const ACCELS: [&str; 6] = ["auto", "none", "flat", "median", "sah", "sah4"];
+const ACCELS: [&str; 7] = ["auto", "none", "flat", "median", "sah", "sah4", "sah8"];
 
 #[test]
 fn quick_table_has_every_scene_light_and_accelerator() {
@@ -95,15 +95,17 @@ fn quick_ray_throughput_reports_every_set() {
                 .unwrap_or_else(|| panic!("{set} with {accel} missing:\n{stdout}"));
             line.split_whitespace().map(str::to_string).collect()
         };
-        let (sah, sah4) = (fields("sah"), fields("sah4"));
+        let sah = fields("sah");
         // grid tris accel build_ms median_build_ms bytes_per_tri set rays hits … (the render
         // row has no hits)
         let counts = if set == "render" { 7..8 } else { 7..9 };
-        assert_eq!(
-            sah[counts.clone()],
-            sah4[counts],
-            "{set}: ray or hit counts differ"
-        );
+        for wide in ["sah4", "sah8"] {
+            assert_eq!(
+                sah[counts.clone()],
+                fields(wide)[counts.clone()],
+                "{set}: ray or hit counts differ with {wide}"
+            );
+        }
     }
 }
 

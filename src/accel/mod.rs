@@ -16,14 +16,14 @@
 pub mod aabb;
 pub mod beam;
 pub mod bvh;
-pub mod bvh4;
 pub mod kernels;
 mod leaves;
 pub mod stack;
+pub mod wide;
 
 pub use beam::Beam;
 pub use bvh::{Bvh, BvhOptions, BvhStats, Split};
-pub use bvh4::Bvh4;
+pub use wide::{Bvh4, Bvh8};
 
 use crate::geometry::{Candidate, Primitive, Shape};
 use crate::ray::{PreparedRay, Ray};
@@ -46,17 +46,20 @@ pub enum AccelKind {
     Sah,
     /// The binned-SAH BVH collapsed to four children a node, tested in SIMD lanes.
     Sah4,
+    /// The binned-SAH BVH collapsed to eight children a node.
+    Sah8,
 }
 
 impl AccelKind {
     /// Every kind, in the order the benchmark reports them.
-    pub const ALL: [AccelKind; 6] = [
+    pub const ALL: [AccelKind; 7] = [
         AccelKind::Auto,
         AccelKind::None,
         AccelKind::Flat,
         AccelKind::Median,
         AccelKind::Sah,
         AccelKind::Sah4,
+        AccelKind::Sah8,
     ];
 
     pub fn name(self) -> &'static str {
@@ -67,6 +70,7 @@ impl AccelKind {
             AccelKind::Median => "median",
             AccelKind::Sah => "sah",
             AccelKind::Sah4 => "sah4",
+            AccelKind::Sah8 => "sah8",
         }
     }
 }
@@ -98,8 +102,10 @@ impl std::str::FromStr for AccelKind {
             "median" => Ok(AccelKind::Median),
             "sah" => Ok(AccelKind::Sah),
             "sah4" => Ok(AccelKind::Sah4),
+            "sah8" => Ok(AccelKind::Sah8),
             other => Err(format!(
-                "unknown accelerator '{other}' (expected auto, none, flat, median, sah or sah4)"
+                "unknown accelerator '{other}' (expected auto, none, flat, median, sah, sah4 or \
+                 sah8)"
             )),
         }
     }
@@ -122,6 +128,7 @@ pub enum Accel {
     List,
     Bvh(Bvh),
     Bvh4(Bvh4),
+    Bvh8(Bvh8),
 }
 
 impl Accel {
@@ -138,6 +145,7 @@ impl Accel {
             AccelKind::Median => Accel::Bvh(Bvh::build_median(prims, leaf_size)),
             AccelKind::Sah => Accel::Bvh(Bvh::build_sah(prims, leaf_size)),
             AccelKind::Auto | AccelKind::Sah4 => Accel::Bvh4(Bvh4::build(prims, leaf_size)),
+            AccelKind::Sah8 => Accel::Bvh8(Bvh8::build(prims, leaf_size)),
         }
     }
 
@@ -147,6 +155,7 @@ impl Accel {
             Accel::List => 0,
             Accel::Bvh(b) => b.memory_bytes(),
             Accel::Bvh4(b) => b.memory_bytes(),
+            Accel::Bvh8(b) => b.memory_bytes(),
         }
     }
 
@@ -156,6 +165,7 @@ impl Accel {
             Accel::List => 0,
             Accel::Bvh(b) => b.leaf_bytes(),
             Accel::Bvh4(b) => b.leaf_bytes(),
+            Accel::Bvh8(b) => b.leaf_bytes(),
         }
     }
 
@@ -165,6 +175,7 @@ impl Accel {
             Accel::List => None,
             Accel::Bvh(b) => Some(b.stats()),
             Accel::Bvh4(b) => Some(b.stats()),
+            Accel::Bvh8(b) => Some(b.stats()),
         }
     }
 
@@ -191,6 +202,7 @@ impl Accel {
             }
             Accel::Bvh(b) => b.closest(prims, &r, t_max),
             Accel::Bvh4(b) => b.closest(prims, &r, t_max),
+            Accel::Bvh8(b) => b.closest(prims, &r, t_max),
         }
     }
 
@@ -217,6 +229,7 @@ impl Accel {
                 .any(|(i, p)| p.shape.intersect_prepared(&r, t_max).is_some() && blocks(i as u32)),
             Accel::Bvh(b) => b.any(prims, &r, t_max, blocks),
             Accel::Bvh4(b) => b.any(prims, &r, t_max, blocks),
+            Accel::Bvh8(b) => b.any(prims, &r, t_max, blocks),
         }
     }
 
@@ -236,6 +249,7 @@ impl Accel {
             Accel::List => gather(beam, prims, 0..prims.len() as u32, limit, out),
             Accel::Bvh(b) => b.beam_candidates(prims, beam, limit, out),
             Accel::Bvh4(b) => b.beam_candidates(prims, beam, limit, out),
+            Accel::Bvh8(b) => b.beam_candidates(prims, beam, limit, out),
         }
     }
 

@@ -18,12 +18,12 @@ pub struct Ray4 {
     /// Whether the triangle test can run at all ([`PreparedRay::shear_ok`]).
     pub(super) shear_ok: bool,
     /// The origin and direction per world axis, and the direction's squared length.
-    pub(super) origin: [Vec4; 3],
+    pub(in crate::accel) origin: [Vec4; 3],
     pub(super) dir: [Vec4; 3],
     pub(super) dir_length2: Vec4,
     /// `1/dir` and the widened `1/dir` per world axis, and their signs, for the box clamp.
-    inv_dir: [Vec4; 3],
-    inv_dir_far: [Vec4; 3],
+    pub(in crate::accel) inv_dir: [Vec4; 3],
+    pub(in crate::accel) inv_dir_far: [Vec4; 3],
     negative: [bool; 3],
 }
 

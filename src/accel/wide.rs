@@ -1,16 +1,21 @@
-//! A four-wide BVH: the binned-SAH binary tree of [`super::bvh`] collapsed so that each node holds
-//! up to four children, whose boxes one traversal step tests together in the four SIMD lanes of a
-//! `glam::Vec4` (SSE on x86-64, so every 64-bit x86 CPU runs it as it is).
+//! Wide BVHs: the binned-SAH binary tree of [`super::bvh`] collapsed so that each node holds up
+//! to four ([`Bvh4`]) or eight ([`Bvh8`]) children, whose boxes one traversal step tests together,
+//! four at a time in the SIMD lanes of a `glam::Vec4` (SSE on x86-64, so every 64-bit x86 CPU
+//! runs it as it is).
 //!
 //! Collapsing (as Embree's and tinybvh's wide BVHs are made from a binary tree): a node starts
-//! with its two binary children; while it has fewer than four and one of them is interior, the
-//! interior child of largest surface area is replaced by its own two children. A tree of `L`
-//! leaves then has about `L/3` nodes instead of `L − 1`, each 128 bytes (two cache lines: the
-//! twelve planes of the four boxes in structure-of-arrays form, and the four children's
-//! references), and a ray takes about half as many dependent steps from the root to a leaf.
+//! with its two binary children; while it has fewer than its width and one of them is interior,
+//! the interior child of largest surface area is replaced by its own two children. A tree of `L`
+//! leaves then has about `L/3` four-wide nodes (`L/7` eight-wide) instead of `L − 1`, each 128
+//! bytes (256 eight-wide: the planes of the boxes in structure-of-arrays form, then the
+//! children's references), and a ray takes about a half (a third) as many dependent steps from
+//! the root to a leaf.
 //!
-//! Traversal visits the hit children nearest first (a closest-hit query sorts the up to four
-//! entry distances; an any-hit query does not order them) and keeps the far ones on a stack.
+//! A closest-hit query visits the nearest hit child first and keeps the others on a stack with
+//! their entry distances, in slot order (a full sort by distance took 16% longer on the primary
+//! rays of `raytracer bench --rays`: its branches cost more than the order saved); an any-hit
+//! query does not order them at all.
+//!
 //! The leaves are the binary tree's, unchanged ([`super::leaves`]), and every box test makes the
 //! decisions of [`super::aabb::slab`] lane for lane, so the answers are exactly those of every
 //! other accelerator (`tests/accel.rs`).
@@ -19,7 +24,9 @@ use glam::{Vec3A, Vec4};
 
 use super::aabb::{slab, Aabb};
 use super::beam::Beam;
-use super::bvh::{BinaryTree, BvhOptions, BvhStats, Node, NodeRef, Split, STACK_SIZE};
+use super::bvh::{
+    BinaryTree, BvhOptions, BvhStats, Node as BinaryNode, NodeRef, Split, STACK_SIZE,
+};
 use super::kernels::Ray4;
 use super::leaves::{lanes, Best, Leaves};
 use super::stack::Stack;
@@ -28,139 +35,143 @@ use crate::geometry::{Candidate, Primitive};
 use crate::math::Vec3;
 use crate::ray::PreparedRay;
 
-/// Children of a node.
-const WIDTH: usize = 4;
+/// The four-wide BVH.
+pub type Bvh4 = WideBvh<1>;
 
-/// Traversal stack entries. A collapsed tree is no deeper than the binary tree it came from (at
-/// most [`STACK_SIZE`] levels), and a step pushes at most three children.
-const STACK4_SIZE: usize = (WIDTH - 1) * STACK_SIZE;
+/// The eight-wide BVH.
+pub type Bvh8 = WideBvh<2>;
 
-/// Four children: per axis, the four lower and the four upper bounds, then each child's
-/// reference (`count == 0`: node `index`; else the leaf `index..index + count` of the entries).
-/// An unused slot has an empty box (`+∞` to `−∞`, missed by every ray) and points at an empty
-/// leaf, so even a ray that passes every box test (a NaN direction) finds nothing there.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[repr(C, align(64))]
-struct Node4 {
-    lo: [[f32; WIDTH]; 3],
-    hi: [[f32; WIDTH]; 3],
-    index: [u32; WIDTH],
-    count: [u32; WIDTH],
+/// Most children of a node of any width here.
+const MAX_WIDTH: usize = 8;
+
+/// Traversal stack entries for nodes of `width` children. A collapsed tree is no deeper than the
+/// binary tree it came from (at most [`STACK_SIZE`] levels), and a step pushes at most
+/// `width − 1` children.
+const fn stack_size(width: usize) -> usize {
+    (width - 1) * STACK_SIZE
 }
 
-const _: () = assert!(std::mem::size_of::<Node4>() == 128);
+/// `4·C` children (`C` groups of four, each one SIMD test): per axis, the lower and the upper
+/// bounds, then each child's reference (`count == 0`: node `index`; else the leaf
+/// `index..index + count` of the entries). Slot `l` is lane `l % 4` of group `l / 4`. An unused
+/// slot has an empty box (`+∞` to `−∞`, missed by every ray) and points at an empty leaf, so even
+/// a ray that passes every box test (a NaN direction) finds nothing there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C, align(64))]
+struct Node<const C: usize> {
+    lo: [[[f32; 4]; C]; 3],
+    hi: [[[f32; 4]; C]; 3],
+    index: [[u32; 4]; C],
+    count: [[u32; 4]; C],
+}
 
-impl Node4 {
-    fn empty((index, count): (u32, u32)) -> Node4 {
-        Node4 {
-            lo: [[f32::INFINITY; WIDTH]; 3],
-            hi: [[f32::NEG_INFINITY; WIDTH]; 3],
-            index: [index; WIDTH],
-            count: [count; WIDTH],
+const _: () = assert!(std::mem::size_of::<Node<1>>() == 128);
+const _: () = assert!(std::mem::size_of::<Node<2>>() == 256);
+
+impl<const C: usize> Node<C> {
+    const WIDTH: usize = 4 * C;
+
+    fn empty((index, count): (u32, u32)) -> Node<C> {
+        Node {
+            lo: [[[f32::INFINITY; 4]; C]; 3],
+            hi: [[[f32::NEG_INFINITY; 4]; C]; 3],
+            index: [[index; 4]; C],
+            count: [[count; 4]; C],
         }
     }
 
     fn set(&mut self, slot: usize, lo: Vec3A, hi: Vec3A, child: NodeRef) {
+        let (g, l) = (slot / 4, slot % 4);
         for a in 0..3 {
-            self.lo[a][slot] = lo[a];
-            self.hi[a][slot] = hi[a];
+            self.lo[a][g][l] = lo[a];
+            self.hi[a][g][l] = hi[a];
         }
-        self.index[slot] = child.index;
-        self.count[slot] = child.count;
+        self.index[g][l] = child.index;
+        self.count[g][l] = child.count;
     }
 
     #[inline(always)]
     fn child(&self, slot: usize) -> NodeRef {
         NodeRef {
-            index: self.index[slot],
-            count: self.count[slot],
+            index: self.index[slot / 4][slot % 4],
+            count: self.count[slot / 4][slot % 4],
         }
     }
 
     fn boxes(&self) -> impl Iterator<Item = (Aabb, NodeRef)> + '_ {
-        (0..WIDTH).map(|l| {
-            let corner = |b: &[[f32; WIDTH]; 3]| Vec3::new(b[0][l], b[1][l], b[2][l]);
-            (Aabb::new(corner(&self.lo), corner(&self.hi)), self.child(l))
+        (0..Self::WIDTH).map(|s| {
+            let (g, l) = (s / 4, s % 4);
+            let corner = |b: &[[[f32; 4]; C]; 3]| Vec3::new(b[0][g][l], b[1][g][l], b[2][g][l]);
+            (Aabb::new(corner(&self.lo), corner(&self.hi)), self.child(s))
         })
     }
 }
 
-/// The per-ray constants of the four-box test, each splatted over the lanes.
-struct BoxRay {
-    origin: [Vec4; 3],
-    inv_dir: [Vec4; 3],
-    inv_dir_far: [Vec4; 3],
-}
-
-impl BoxRay {
-    #[inline(always)]
-    fn new(r: &PreparedRay) -> BoxRay {
-        let splat = |v: Vec3A| [v.x, v.y, v.z].map(Vec4::splat);
-        BoxRay {
-            origin: splat(r.origin),
-            inv_dir: splat(r.inv_dir),
-            inv_dir_far: splat(r.inv_dir_far),
-        }
-    }
-}
-
-/// Slab test of the four boxes of `node` (the decisions of [`slab`] on each, for a ray whose
-/// direction has the signs `NX`, `NY`, `NZ`: `true` for negative): a mask of the boxes hit (bit
-/// `l`: slot `l`) and their entry distances.
+/// Slab test of the boxes of `node` (the decisions of [`slab`] on each, for a ray whose
+/// direction has the signs `NX`, `NY`, `NZ`: `true` for negative), four at a time: a mask of the
+/// boxes hit (bit `l`: slot `l`) and their entry distances.
 #[inline(always)]
-fn hit4<const NX: bool, const NY: bool, const NZ: bool>(
-    node: &Node4,
-    r: &BoxRay,
+fn hit<const C: usize, const NX: bool, const NY: bool, const NZ: bool>(
+    node: &Node<C>,
+    r: &Ray4,
     t_max: f32,
-) -> (u32, Vec4) {
-    // As in `slab`: `max(t, acc)` and `min(t, acc)` return `acc` where `t` is NaN (a ray in a
-    // slab's plane), so such a plane is ignored.
-    let mut near = Vec4::ZERO;
-    let mut far = Vec4::splat(t_max);
-    for (a, negative) in [NX, NY, NZ].into_iter().enumerate() {
-        let lo = Vec4::from_array(node.lo[a]);
-        let hi = Vec4::from_array(node.hi[a]);
-        let (near_plane, far_plane) = if negative { (hi, lo) } else { (lo, hi) };
-        near = ((near_plane - r.origin[a]) * r.inv_dir[a]).max(near);
-        far = ((far_plane - r.origin[a]) * r.inv_dir_far[a]).min(far);
-    }
-    (near.cmple(far).bitmask(), near)
-}
-
-/// The slots of `mask` (two or more set) sorted by entry distance `near`, farthest first, and
-/// how many there are.
-#[inline(always)]
-fn far_to_near(mask: u32, near: Vec4) -> ([usize; WIDTH], usize) {
-    let near = near.to_array();
-    let mut sorted = [0usize; WIDTH];
-    let mut k = 0;
-    for l in lanes(mask) {
-        let mut j = k;
-        while j > 0 && near[sorted[j - 1]] < near[l] {
-            sorted[j] = sorted[j - 1];
-            j -= 1;
+) -> (u32, [Vec4; C]) {
+    let mut mask = 0;
+    let mut entry = [Vec4::ZERO; C];
+    for (g, entry) in entry.iter_mut().enumerate() {
+        // As in `slab`: `max(t, acc)` and `min(t, acc)` return `acc` where `t` is NaN (a ray in
+        // a slab's plane), so such a plane is ignored.
+        let mut near = Vec4::ZERO;
+        let mut far = Vec4::splat(t_max);
+        for (a, negative) in [NX, NY, NZ].into_iter().enumerate() {
+            let lo = Vec4::from_array(node.lo[a][g]);
+            let hi = Vec4::from_array(node.hi[a][g]);
+            let (near_plane, far_plane) = if negative { (hi, lo) } else { (lo, hi) };
+            near = ((near_plane - r.origin[a]) * r.inv_dir[a]).max(near);
+            far = ((far_plane - r.origin[a]) * r.inv_dir_far[a]).min(far);
         }
-        sorted[j] = l;
-        k += 1;
+        mask |= near.cmple(far).bitmask() << (4 * g);
+        *entry = near;
     }
-    (sorted, k)
+    (mask, entry)
 }
 
-/// The four-wide BVH.
+/// The slot of `mask` (not empty) of least entry distance, and every slot's entry distance.
+#[inline(always)]
+fn nearest<const C: usize>(mask: u32, entry: [Vec4; C]) -> (usize, [f32; MAX_WIDTH]) {
+    let mut near = [f32::INFINITY; MAX_WIDTH];
+    for (g, e) in entry.iter().enumerate() {
+        near[4 * g..4 * g + 4].copy_from_slice(&e.to_array());
+    }
+    let mut first = mask.trailing_zeros() as usize;
+    for l in lanes(mask & (mask - 1)) {
+        if near[l] < near[first] {
+            first = l;
+        }
+    }
+    (first, near)
+}
+
+/// A BVH of `4·C` children a node.
 #[derive(Debug, Clone)]
-pub struct Bvh4 {
+pub struct WideBvh<const C: usize> {
     /// The root's box and reference (a node, or a leaf when the whole tree is one); `None` for no
     /// primitives.
     root: Option<(Vec3A, Vec3A, NodeRef)>,
     /// The nodes, depth first from the root.
-    nodes: Vec<Node4>,
+    nodes: Vec<Node<C>>,
     leaves: Leaves,
     /// The unbounded primitives, in index order: outside the tree, tested by every query.
     unbounded: Vec<u32>,
 }
 
 /// Collapses the binary subtree at `slot` (interior) into `out`; returns its node's index.
-fn collapse(binary: &[Node], slot: usize, empty: (u32, u32), out: &mut Vec<Node4>) -> u32 {
+fn collapse<const C: usize>(
+    binary: &[BinaryNode],
+    slot: usize,
+    empty: (u32, u32),
+    out: &mut Vec<Node<C>>,
+) -> u32 {
     let children = |s: usize| {
         let k = binary[s].index as usize;
         [1 + 2 * k, 2 + 2 * k]
@@ -170,7 +181,7 @@ fn collapse(binary: &[Node], slot: usize, empty: (u32, u32), out: &mut Vec<Node4
         e.x * e.y + e.y * e.z + e.z * e.x
     };
     let mut kids = children(slot).to_vec();
-    while kids.len() < WIDTH {
+    while kids.len() < Node::<C>::WIDTH {
         // The interior child of largest area (the first of equal ones) opens up.
         let Some(i) = (0..kids.len())
             .filter(|&i| binary[kids[i]].count == 0)
@@ -183,7 +194,7 @@ fn collapse(binary: &[Node], slot: usize, empty: (u32, u32), out: &mut Vec<Node4
         kids.insert(i + 1, r);
     }
     let me = out.len();
-    out.push(Node4::empty(empty));
+    out.push(Node::empty(empty));
     for (l, &k) in kids.iter().enumerate() {
         let b = &binary[k];
         let child = if b.count == 0 {
@@ -199,10 +210,10 @@ fn collapse(binary: &[Node], slot: usize, empty: (u32, u32), out: &mut Vec<Node4
     me as u32
 }
 
-impl Bvh4 {
+impl<const C: usize> WideBvh<C> {
     /// Builds the binary SAH tree over `prims` with leaves of at most `leaf_size` primitives and
     /// collapses it. Fewer than `u32::MAX` primitives (the caller checks).
-    pub fn build(prims: &[Primitive], leaf_size: usize) -> Bvh4 {
+    pub fn build(prims: &[Primitive], leaf_size: usize) -> WideBvh<C> {
         let BinaryTree {
             nodes: binary,
             mut leaves,
@@ -229,7 +240,7 @@ impl Bvh4 {
             (n.lo, n.hi, root)
         });
         nodes.shrink_to_fit();
-        Bvh4 {
+        WideBvh {
             root,
             nodes,
             leaves,
@@ -239,7 +250,7 @@ impl Bvh4 {
 
     /// Bytes held: the nodes, the leaves (primitive order and blocks) and the unbounded list.
     pub fn memory_bytes(&self) -> usize {
-        std::mem::size_of::<Bvh4>()
+        std::mem::size_of::<WideBvh<C>>()
             + self.node_bytes()
             + self.leaf_bytes()
             + self.unbounded.capacity() * std::mem::size_of::<u32>()
@@ -247,7 +258,7 @@ impl Bvh4 {
 
     /// Bytes of the interior nodes.
     pub fn node_bytes(&self) -> usize {
-        self.nodes.capacity() * std::mem::size_of::<Node4>()
+        self.nodes.capacity() * std::mem::size_of::<Node<C>>()
     }
 
     /// Bytes of the leaves: the primitive order and the SIMD blocks.
@@ -260,7 +271,7 @@ impl Bvh4 {
         &self.unbounded
     }
 
-    /// Node count, leaf count, depth (in four-wide levels) and largest leaf. Unused slots are
+    /// Node count, leaf count, depth (in wide levels) and largest leaf. Unused slots are
     /// not counted.
     pub fn stats(&self) -> BvhStats {
         let mut s = BvhStats {
@@ -281,7 +292,7 @@ impl Bvh4 {
                 }
             } else {
                 let node = &self.nodes[n.index as usize];
-                stack.extend((0..WIDTH).map(|l| (node.child(l), d + 1)));
+                stack.extend((0..Node::<C>::WIDTH).map(|l| (node.child(l), d + 1)));
             }
         }
         s
@@ -306,7 +317,7 @@ impl Bvh4 {
         if !beam.may_hit_box(&Aabb::new(lo.into(), hi.into())) {
             return true;
         }
-        let mut stack: Stack<NodeRef, STACK4_SIZE> = Stack::new();
+        let mut stack: Stack<NodeRef, { stack_size(MAX_WIDTH) }> = Stack::new();
         stack.push(root);
         while let Some(n) = stack.pop() {
             if n.count > 0 {
@@ -362,7 +373,7 @@ impl Bvh4 {
         }
     }
 
-    /// The tree's part of [`Bvh4::closest`] from the interior node `root`, starting from `best`.
+    /// The tree's part of [`WideBvh::closest`] from the interior node `root`, starting from `best`.
     fn closest_in<const NX: bool, const NY: bool, const NZ: bool>(
         &self,
         prims: &[Primitive],
@@ -370,28 +381,26 @@ impl Bvh4 {
         root: NodeRef,
         mut best: Best,
     ) -> Option<(u32, Candidate)> {
-        let br = BoxRay::new(r);
         let r4 = Ray4::new(r);
         // Entries: a child and its entry distance.
-        let mut stack: Stack<(NodeRef, f32), STACK4_SIZE> = Stack::new();
+        let mut stack: Stack<(NodeRef, f32), { stack_size(MAX_WIDTH) }> = Stack::new();
         let mut n = root;
         loop {
             if n.count == 0 {
                 let node = &self.nodes[n.index as usize];
-                let (mask, near) = hit4::<NX, NY, NZ>(node, &br, best.t);
+                let (mask, entry) = hit::<C, NX, NY, NZ>(node, &r4, best.t);
                 if mask != 0 {
                     if mask & (mask - 1) == 0 {
                         n = node.child(mask.trailing_zeros() as usize);
                         continue;
                     }
                     // Two or more: the nearest is visited now and the others wait on the
-                    // stack, nearer ones above.
-                    let (sorted, k) = far_to_near(mask, near);
-                    let near = near.to_array();
-                    for &l in &sorted[..k - 1] {
+                    // stack, in slot order (see the module docs).
+                    let (first, near) = nearest(mask, entry);
+                    for l in lanes(mask & !(1 << first)) {
                         stack.push((node.child(l), near[l]));
                     }
-                    n = node.child(sorted[k - 1]);
+                    n = node.child(first);
                     continue;
                 }
             } else {
@@ -448,7 +457,7 @@ impl Bvh4 {
         }
     }
 
-    /// The tree's part of [`Bvh4::any`] from the interior node `root`. The hit children are
+    /// The tree's part of [`WideBvh::any`] from the interior node `root`. The hit children are
     /// visited in slot order: any hit ends the query, so ordering them would buy nothing.
     fn any_in<const NX: bool, const NY: bool, const NZ: bool>(
         &self,
@@ -458,24 +467,21 @@ impl Bvh4 {
         t_max: f32,
         mut blocks: impl FnMut(u32) -> bool,
     ) -> bool {
-        let br = BoxRay::new(r);
         let r4 = Ray4::new(r);
-        let mut stack: Stack<NodeRef, STACK4_SIZE> = Stack::new();
+        let mut stack: Stack<NodeRef, { stack_size(MAX_WIDTH) }> = Stack::new();
         let mut n = root;
         loop {
             if n.count == 0 {
                 let node = &self.nodes[n.index as usize];
-                let (mask, near) = hit4::<NX, NY, NZ>(node, &br, t_max);
+                let (mask, _) = hit::<C, NX, NY, NZ>(node, &r4, t_max);
                 if mask != 0 {
-                    if mask & (mask - 1) == 0 {
-                        n = node.child(mask.trailing_zeros() as usize);
-                        continue;
-                    }
-                    let (sorted, k) = far_to_near(mask, near);
-                    for &l in &sorted[..k - 1] {
+                    // The first hit child now, the others (in slot order) on the stack: the
+                    // shadow rays of `raytracer bench --rays` gained nothing from visiting the
+                    // nearest first, and a full sort cost them 15%.
+                    for l in lanes(mask & (mask - 1)) {
                         stack.push(node.child(l));
                     }
-                    n = node.child(sorted[k - 1]);
+                    n = node.child(mask.trailing_zeros() as usize);
                     continue;
                 }
             } else if self
@@ -522,7 +528,7 @@ mod tests {
 
     /// Every bounded primitive in exactly one leaf, inside its slot's box; every unused slot
     /// empty, pointing at the empty leaf; every node's children inside its own slot's box.
-    fn check(tree: &Bvh4, prims: &[Primitive]) {
+    fn check<const C: usize>(tree: &WideBvh<C>, prims: &[Primitive]) {
         let mut seen = vec![0u32; prims.len()];
         let Some((lo, hi, root)) = tree.root else {
             assert!(prims.iter().all(|p| !p.shape.is_bounded()));
@@ -538,21 +544,17 @@ mod tests {
                 }
                 continue;
             }
-            let node = &tree.nodes[n.index as usize];
-            let used = node
-                .count
-                .iter()
-                .zip(node.lo[0])
-                .filter(|(_, l)| l.is_finite());
-            assert!(used.count() >= 2, "a node of fewer than two children");
-            for (cb, child) in node.boxes() {
+            let mut used = 0;
+            for (cb, child) in tree.nodes[n.index as usize].boxes() {
                 if cb.min.x == f32::INFINITY {
                     assert_eq!(tree.leaves.primitives(child.index, child.count).count(), 0);
                     continue;
                 }
+                used += 1;
                 assert!(b.contains(cb.min, 0.0) && b.contains(cb.max, 0.0));
                 stack.push((cb, child));
             }
+            assert!(used >= 2, "a node of fewer than two children");
         }
         for (p, prim) in prims.iter().enumerate() {
             let want = u32::from(prim.shape.is_bounded());
@@ -573,26 +575,33 @@ mod tests {
                     });
                 }
                 check(&Bvh4::build(&prims, leaf), &prims);
+                check(&Bvh8::build(&prims, leaf), &prims);
             }
         }
     }
 
     #[test]
-    fn collapsing_fills_nodes_and_halves_the_depth() {
+    fn collapsing_fills_nodes_and_cuts_the_depth() {
         let prims = grid(4000);
         let binary = Bvh::build_sah(&prims, 4).stats();
-        let wide = Bvh4::build(&prims, 4).stats();
-        assert_eq!(wide.leaves, binary.leaves);
-        assert_eq!(wide.max_leaf, binary.max_leaf);
-        // `L` leaves in binary nodes of two children: `L − 1` nodes; four children: `(L − 1)/3`.
-        // Nodes whose children are all leaves may hold fewer, so allow a little more.
+        let four = Bvh4::build(&prims, 4).stats();
+        let eight = Bvh8::build(&prims, 4).stats();
+        for wide in [four, eight] {
+            assert_eq!(wide.leaves, binary.leaves);
+            assert_eq!(wide.max_leaf, binary.max_leaf);
+        }
+        // `L` leaves in binary nodes of two children: `L − 1` nodes; full nodes of four would be
+        // `(L − 1)/3`. A node stops growing when all its children are leaves, so nodes hold
+        // fewer, and eight-wide ones far fewer than eight (3.8 on average on this grid).
         assert!(
-            wide.nodes * 2 < binary.leaves,
-            "{wide:?} against {binary:?}"
+            four.nodes * 2 < binary.leaves,
+            "{four:?} against {binary:?}"
         );
+        assert!(eight.nodes < four.nodes, "{eight:?} against {four:?}");
         assert!(
-            2 * wide.depth <= binary.depth + 1,
-            "{wide:?} against {binary:?}"
+            2 * four.depth <= binary.depth + 1,
+            "{four:?} against {binary:?}"
         );
+        assert!(eight.depth < four.depth, "{eight:?} against {four:?}");
     }
 }
