@@ -27,12 +27,13 @@
 
 use glam::{Vec3A, Vec4, Vec4Swizzles};
 
-use super::aabb::{slab, Aabb};
+use super::aabb::Aabb;
 use super::beam::Beam;
+use super::gather;
 use super::kernels::Ray4;
 use super::leaves::{Best, Leaves};
 use super::stack::Stack;
-use super::{any_among, gather};
+use super::traverse::{self, next_within, Tree};
 use crate::geometry::{Candidate, Primitive};
 use crate::math::Vec3;
 use crate::ray::PreparedRay;
@@ -645,7 +646,7 @@ impl Bvh {
         }
     }
 
-    /// Slab test of both boxes of a pair at once (the same decisions as [`slab`] on each): a
+    /// Slab test of both boxes of a pair at once (the same decisions as [`super::aabb::slab`] on each): a
     /// bit mask of the boxes hit (bit 0: child 0) and their entry distances.
     #[inline(always)]
     fn pair_hit<const NX: bool, const NY: bool, const NZ: bool>(
@@ -755,47 +756,44 @@ impl Bvh {
         r: &PreparedRay,
         t_max: f32,
     ) -> Option<(u32, Candidate)> {
-        let mut best = Best::new(t_max);
-        best.among(prims, &self.unbounded, r);
-        let Some((lo, hi, root)) = self.root else {
-            return best.hit();
-        };
-        if root.count > 0 {
-            // A single leaf: no traversal.
-            if slab(lo, hi, r, best.t).0 {
-                self.leaves
-                    .closest(prims, r, &Ray4::new(r), (root.index, root.count), &mut best);
-            }
-            return best.hit();
-        }
-        // One copy of the loop per octant of the direction, so the slab test's lane swaps are
-        // fixed at compile time.
-        match r.negative.bitmask() {
-            0 => self.closest_in::<false, false, false>(prims, r, best),
-            1 => self.closest_in::<true, false, false>(prims, r, best),
-            2 => self.closest_in::<false, true, false>(prims, r, best),
-            3 => self.closest_in::<true, true, false>(prims, r, best),
-            4 => self.closest_in::<false, false, true>(prims, r, best),
-            5 => self.closest_in::<true, false, true>(prims, r, best),
-            6 => self.closest_in::<false, true, true>(prims, r, best),
-            _ => self.closest_in::<true, true, true>(prims, r, best),
-        }
+        traverse::closest(self, prims, r, t_max)
     }
 
-    /// The tree's part of [`Bvh::closest`], starting from `best` (the unbounded primitives'
-    /// answer, or none).
-    fn closest_in<const NX: bool, const NY: bool, const NZ: bool>(
+    /// Whether any primitive for which `blocks` holds is hit with `0 < t < t_max`; stops at the
+    /// first. The unbounded primitives are tested first.
+    pub fn any(
         &self,
         prims: &[Primitive],
         r: &PreparedRay,
+        t_max: f32,
+        blocks: impl FnMut(u32) -> bool,
+    ) -> bool {
+        traverse::any(self, prims, r, t_max, blocks)
+    }
+}
+
+impl Tree for Bvh {
+    fn unbounded(&self) -> &[u32] {
+        &self.unbounded
+    }
+
+    fn root(&self) -> Option<(Vec3A, Vec3A, NodeRef)> {
+        self.root
+    }
+
+    fn leaves(&self) -> &Leaves {
+        &self.leaves
+    }
+
+    /// Visits the nearer child of a pair first and skips subtrees that start beyond the best hit
+    /// so far.
+    fn closest_below<const NX: bool, const NY: bool, const NZ: bool>(
+        &self,
+        prims: &[Primitive],
+        r: &PreparedRay,
+        root: NodeRef,
         mut best: Best,
     ) -> Option<(u32, Candidate)> {
-        let Some((lo, hi, root)) = self.root else {
-            return best.hit();
-        };
-        if !slab(lo, hi, r, best.t).0 {
-            return best.hit();
-        }
         let pr = PairRay::new(r);
         let r4 = Ray4::new(r);
         // Entries: node identifier and entry distance.
@@ -834,71 +832,21 @@ impl Bvh {
                 self.leaves
                     .closest(prims, r, &r4, (n.index, n.count), &mut best);
             }
-            // Next subtree from the stack whose entry is not beyond the best hit: the same answer
-            // the box test would give now, as its exit side passed when it was pushed.
-            loop {
-                let Some((id, near)) = stack.pop() else {
-                    return best.hit();
-                };
-                if near <= best.t {
-                    n = self.node(id);
-                    break;
-                }
-            }
+            let Some(id) = next_within(&mut stack, best.t) else {
+                return best.hit();
+            };
+            n = self.node(id);
         }
     }
 
-    /// Whether any primitive for which `blocks` holds is hit with `0 < t < t_max`; stops at the
-    /// first. The unbounded primitives are tested first.
-    pub fn any(
+    fn any_below<const NX: bool, const NY: bool, const NZ: bool>(
         &self,
         prims: &[Primitive],
         r: &PreparedRay,
+        root: NodeRef,
         t_max: f32,
-        mut blocks: impl FnMut(u32) -> bool,
+        blocks: &mut impl FnMut(u32) -> bool,
     ) -> bool {
-        if any_among(prims, &self.unbounded, r, t_max, &mut blocks) {
-            return true;
-        }
-        let Some((lo, hi, root)) = self.root else {
-            return false;
-        };
-        if root.count > 0 {
-            return slab(lo, hi, r, t_max).0
-                && self.leaves.any(
-                    prims,
-                    r,
-                    &Ray4::new(r),
-                    (root.index, root.count),
-                    t_max,
-                    &mut blocks,
-                );
-        }
-        match r.negative.bitmask() {
-            0 => self.any_in::<false, false, false>(prims, r, t_max, blocks),
-            1 => self.any_in::<true, false, false>(prims, r, t_max, blocks),
-            2 => self.any_in::<false, true, false>(prims, r, t_max, blocks),
-            3 => self.any_in::<true, true, false>(prims, r, t_max, blocks),
-            4 => self.any_in::<false, false, true>(prims, r, t_max, blocks),
-            5 => self.any_in::<true, false, true>(prims, r, t_max, blocks),
-            6 => self.any_in::<false, true, true>(prims, r, t_max, blocks),
-            _ => self.any_in::<true, true, true>(prims, r, t_max, blocks),
-        }
-    }
-
-    fn any_in<const NX: bool, const NY: bool, const NZ: bool>(
-        &self,
-        prims: &[Primitive],
-        r: &PreparedRay,
-        t_max: f32,
-        mut blocks: impl FnMut(u32) -> bool,
-    ) -> bool {
-        let Some((lo, hi, root)) = self.root else {
-            return false;
-        };
-        if !slab(lo, hi, r, t_max).0 {
-            return false;
-        }
         let pr = PairRay::new(r);
         let r4 = Ray4::new(r);
         let mut stack: Stack<u32, STACK_SIZE> = Stack::new();
@@ -934,7 +882,7 @@ impl Bvh {
                 }
             } else if self
                 .leaves
-                .any(prims, r, &r4, (n.index, n.count), t_max, &mut blocks)
+                .any(prims, r, &r4, (n.index, n.count), t_max, blocks)
             {
                 return true;
             }

@@ -19,6 +19,7 @@ pub mod bvh;
 pub mod kernels;
 mod leaves;
 pub mod stack;
+mod traverse;
 pub mod wide;
 
 pub use beam::Beam;

@@ -12,8 +12,8 @@
 //! the root to a leaf.
 //!
 //! A closest-hit query visits the nearest hit child first and keeps the others on a stack with
-//! their entry distances, in slot order (a full sort by distance took 16% longer on the primary
-//! rays of `raytracer bench --rays`: its branches cost more than the order saved); an any-hit
+//! their entry distances, in slot order (a full sort by distance cut the primary rays' rate of
+//! `raytracer bench --rays` by 14%: its branches cost more than the order saved); an any-hit
 //! query does not order them at all.
 //!
 //! The leaves are the binary tree's, unchanged ([`super::leaves`]), and every box test makes the
@@ -22,15 +22,16 @@
 
 use glam::{Vec3A, Vec4};
 
-use super::aabb::{slab, Aabb};
+use super::aabb::Aabb;
 use super::beam::Beam;
 use super::bvh::{
     BinaryTree, BvhOptions, BvhStats, Node as BinaryNode, NodeRef, Split, STACK_SIZE,
 };
+use super::gather;
 use super::kernels::Ray4;
 use super::leaves::{lanes, Best, Leaves};
 use super::stack::Stack;
-use super::{any_among, gather};
+use super::traverse::{self, next_within, Tree};
 use crate::geometry::{Candidate, Primitive};
 use crate::math::Vec3;
 use crate::ray::PreparedRay;
@@ -345,36 +346,38 @@ impl<const C: usize> WideBvh<C> {
         r: &PreparedRay,
         t_max: f32,
     ) -> Option<(u32, Candidate)> {
-        let mut best = Best::new(t_max);
-        best.among(prims, &self.unbounded, r);
-        let Some((lo, hi, root)) = self.root else {
-            return best.hit();
-        };
-        if !slab(lo, hi, r, best.t).0 {
-            return best.hit();
-        }
-        if root.count > 0 {
-            let r4 = Ray4::new(r);
-            self.leaves
-                .closest(prims, r, &r4, (root.index, root.count), &mut best);
-            return best.hit();
-        }
-        // One copy of the loop per octant of the direction, so that the choice of near and far
-        // planes is made at compile time.
-        match r.negative.bitmask() {
-            0 => self.closest_in::<false, false, false>(prims, r, root, best),
-            1 => self.closest_in::<true, false, false>(prims, r, root, best),
-            2 => self.closest_in::<false, true, false>(prims, r, root, best),
-            3 => self.closest_in::<true, true, false>(prims, r, root, best),
-            4 => self.closest_in::<false, false, true>(prims, r, root, best),
-            5 => self.closest_in::<true, false, true>(prims, r, root, best),
-            6 => self.closest_in::<false, true, true>(prims, r, root, best),
-            _ => self.closest_in::<true, true, true>(prims, r, root, best),
-        }
+        traverse::closest(self, prims, r, t_max)
     }
 
-    /// The tree's part of [`WideBvh::closest`] from the interior node `root`, starting from `best`.
-    fn closest_in<const NX: bool, const NY: bool, const NZ: bool>(
+    /// Whether any primitive for which `blocks` holds is hit with `0 < t < t_max`; stops at the
+    /// first. The unbounded primitives are tested first.
+    pub fn any(
+        &self,
+        prims: &[Primitive],
+        r: &PreparedRay,
+        t_max: f32,
+        blocks: impl FnMut(u32) -> bool,
+    ) -> bool {
+        traverse::any(self, prims, r, t_max, blocks)
+    }
+}
+
+impl<const C: usize> Tree for WideBvh<C> {
+    fn unbounded(&self) -> &[u32] {
+        &self.unbounded
+    }
+
+    fn root(&self) -> Option<(Vec3A, Vec3A, NodeRef)> {
+        self.root
+    }
+
+    fn leaves(&self) -> &Leaves {
+        &self.leaves
+    }
+
+    /// Visits the nearest hit child first and skips subtrees that start beyond the best hit so
+    /// far.
+    fn closest_below<const NX: bool, const NY: bool, const NZ: bool>(
         &self,
         prims: &[Primitive],
         r: &PreparedRay,
@@ -407,65 +410,21 @@ impl<const C: usize> WideBvh<C> {
                 self.leaves
                     .closest(prims, r, &r4, (n.index, n.count), &mut best);
             }
-            // Next subtree from the stack whose entry is not beyond the best hit: the same answer
-            // the box test would give now, as its exit side passed when it was pushed.
-            loop {
-                let Some((child, near)) = stack.pop() else {
-                    return best.hit();
-                };
-                if near <= best.t {
-                    n = child;
-                    break;
-                }
-            }
+            let Some(child) = next_within(&mut stack, best.t) else {
+                return best.hit();
+            };
+            n = child;
         }
     }
 
-    /// Whether any primitive for which `blocks` holds is hit with `0 < t < t_max`; stops at the
-    /// first. The unbounded primitives are tested first.
-    pub fn any(
-        &self,
-        prims: &[Primitive],
-        r: &PreparedRay,
-        t_max: f32,
-        mut blocks: impl FnMut(u32) -> bool,
-    ) -> bool {
-        if any_among(prims, &self.unbounded, r, t_max, &mut blocks) {
-            return true;
-        }
-        let Some((lo, hi, root)) = self.root else {
-            return false;
-        };
-        if !slab(lo, hi, r, t_max).0 {
-            return false;
-        }
-        if root.count > 0 {
-            let span = (root.index, root.count);
-            return self
-                .leaves
-                .any(prims, r, &Ray4::new(r), span, t_max, &mut blocks);
-        }
-        match r.negative.bitmask() {
-            0 => self.any_in::<false, false, false>(prims, r, root, t_max, blocks),
-            1 => self.any_in::<true, false, false>(prims, r, root, t_max, blocks),
-            2 => self.any_in::<false, true, false>(prims, r, root, t_max, blocks),
-            3 => self.any_in::<true, true, false>(prims, r, root, t_max, blocks),
-            4 => self.any_in::<false, false, true>(prims, r, root, t_max, blocks),
-            5 => self.any_in::<true, false, true>(prims, r, root, t_max, blocks),
-            6 => self.any_in::<false, true, true>(prims, r, root, t_max, blocks),
-            _ => self.any_in::<true, true, true>(prims, r, root, t_max, blocks),
-        }
-    }
-
-    /// The tree's part of [`WideBvh::any`] from the interior node `root`. The hit children are
-    /// visited in slot order: any hit ends the query, so ordering them would buy nothing.
-    fn any_in<const NX: bool, const NY: bool, const NZ: bool>(
+    /// Visits the hit children in slot order (see the module docs).
+    fn any_below<const NX: bool, const NY: bool, const NZ: bool>(
         &self,
         prims: &[Primitive],
         r: &PreparedRay,
         root: NodeRef,
         t_max: f32,
-        mut blocks: impl FnMut(u32) -> bool,
+        blocks: &mut impl FnMut(u32) -> bool,
     ) -> bool {
         let r4 = Ray4::new(r);
         let mut stack: Stack<NodeRef, { stack_size(MAX_WIDTH) }> = Stack::new();
@@ -486,7 +445,7 @@ impl<const C: usize> WideBvh<C> {
                 }
             } else if self
                 .leaves
-                .any(prims, r, &r4, (n.index, n.count), t_max, &mut blocks)
+                .any(prims, r, &r4, (n.index, n.count), t_max, blocks)
             {
                 return true;
             }

@@ -1,0 +1,136 @@
+//! What the queries of every tree ([`super::Bvh`], [`super::wide::WideBvh`]) share around their
+//! own node loops: the unbounded primitives first, the root's box, a root that is itself a leaf,
+//! and one copy of the node loop per octant of the ray's direction, so that the box tests' choice
+//! of near and far planes is fixed at compile time.
+
+use glam::Vec3A;
+
+use super::aabb::slab;
+use super::any_among;
+use super::bvh::NodeRef;
+use super::kernels::Ray4;
+use super::leaves::{Best, Leaves};
+use super::stack::Stack;
+use crate::geometry::{Candidate, Primitive};
+use crate::ray::PreparedRay;
+
+/// A tree as its queries see it. `NX`, `NY`, `NZ` are the signs of the ray's direction (`true`
+/// for negative).
+pub(super) trait Tree {
+    /// The primitives kept outside the tree, in index order.
+    fn unbounded(&self) -> &[u32];
+
+    /// The root's box and reference; `None` for a tree of no primitives.
+    fn root(&self) -> Option<(Vec3A, Vec3A, NodeRef)>;
+
+    fn leaves(&self) -> &Leaves;
+
+    /// The closest hit below the interior node `root`, whose box the ray meets, starting from
+    /// `best`.
+    fn closest_below<const NX: bool, const NY: bool, const NZ: bool>(
+        &self,
+        prims: &[Primitive],
+        r: &PreparedRay,
+        root: NodeRef,
+        best: Best,
+    ) -> Option<(u32, Candidate)>;
+
+    /// Whether a primitive accepted by `blocks` below the interior node `root` (whose box the ray
+    /// meets) is hit before `t_max`.
+    fn any_below<const NX: bool, const NY: bool, const NZ: bool>(
+        &self,
+        prims: &[Primitive],
+        r: &PreparedRay,
+        root: NodeRef,
+        t_max: f32,
+        blocks: &mut impl FnMut(u32) -> bool,
+    ) -> bool;
+}
+
+/// The closest hit with `0 < t < t_max` (least `t`, then least primitive index): the unbounded
+/// primitives first, in index order, then the tree.
+pub(super) fn closest(
+    tree: &impl Tree,
+    prims: &[Primitive],
+    r: &PreparedRay,
+    t_max: f32,
+) -> Option<(u32, Candidate)> {
+    let mut best = Best::new(t_max);
+    best.among(prims, tree.unbounded(), r);
+    let Some((lo, hi, root)) = tree.root() else {
+        return best.hit();
+    };
+    if !slab(lo, hi, r, best.t).0 {
+        return best.hit();
+    }
+    if root.count > 0 {
+        // A single leaf: no traversal.
+        let span = (root.index, root.count);
+        tree.leaves()
+            .closest(prims, r, &Ray4::new(r), span, &mut best);
+        return best.hit();
+    }
+    match r.negative.bitmask() {
+        0 => tree.closest_below::<false, false, false>(prims, r, root, best),
+        1 => tree.closest_below::<true, false, false>(prims, r, root, best),
+        2 => tree.closest_below::<false, true, false>(prims, r, root, best),
+        3 => tree.closest_below::<true, true, false>(prims, r, root, best),
+        4 => tree.closest_below::<false, false, true>(prims, r, root, best),
+        5 => tree.closest_below::<true, false, true>(prims, r, root, best),
+        6 => tree.closest_below::<false, true, true>(prims, r, root, best),
+        _ => tree.closest_below::<true, true, true>(prims, r, root, best),
+    }
+}
+
+/// Whether any primitive for which `blocks` holds is hit with `0 < t < t_max`; stops at the
+/// first. The unbounded primitives are tested first.
+pub(super) fn any(
+    tree: &impl Tree,
+    prims: &[Primitive],
+    r: &PreparedRay,
+    t_max: f32,
+    mut blocks: impl FnMut(u32) -> bool,
+) -> bool {
+    if any_among(prims, tree.unbounded(), r, t_max, &mut blocks) {
+        return true;
+    }
+    let Some((lo, hi, root)) = tree.root() else {
+        return false;
+    };
+    if !slab(lo, hi, r, t_max).0 {
+        return false;
+    }
+    if root.count > 0 {
+        let span = (root.index, root.count);
+        return tree
+            .leaves()
+            .any(prims, r, &Ray4::new(r), span, t_max, &mut blocks);
+    }
+    let b = &mut blocks;
+    match r.negative.bitmask() {
+        0 => tree.any_below::<false, false, false>(prims, r, root, t_max, b),
+        1 => tree.any_below::<true, false, false>(prims, r, root, t_max, b),
+        2 => tree.any_below::<false, true, false>(prims, r, root, t_max, b),
+        3 => tree.any_below::<true, true, false>(prims, r, root, t_max, b),
+        4 => tree.any_below::<false, false, true>(prims, r, root, t_max, b),
+        5 => tree.any_below::<true, false, true>(prims, r, root, t_max, b),
+        6 => tree.any_below::<false, true, true>(prims, r, root, t_max, b),
+        _ => tree.any_below::<true, true, true>(prims, r, root, t_max, b),
+    }
+}
+
+/// The next deferred subtree of a closest-hit traversal whose entry distance is not beyond
+/// `t_best`: the answer the box test would give now, as the box's exit side passed when it was
+/// pushed. `None` when none is left.
+#[inline(always)]
+pub(super) fn next_within<T: Copy, const N: usize>(
+    stack: &mut Stack<(T, f32), N>,
+    t_best: f32,
+) -> Option<T> {
+    while let Some((node, near)) = stack.pop() {
+        if near <= t_best {
+            return Some(node);
+        }
+    }
+    None
+}
