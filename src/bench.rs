@@ -1000,7 +1000,8 @@ pub fn random_scene(n: usize, width: u32, height: u32, backdrop: bool) -> Scene 
     }
 }
 
-/// Query times of `random_scene(n, backdrop)` with `none`, `flat` and `sah`, for each `n`: the
+/// Query times of `random_scene(n, backdrop)` with `none`, `flat`, `sah` and `sah4` (the tree
+/// `auto` builds from [`crate::accel::AUTO_MIN_PRIMITIVES`] on), for each `n`: the
 /// three ray sets of [`ray_sets`] (camera rays at 320×240, shadow rays to the light, random
 /// secondary rays) traced on this thread, medians of `runs`. Timing the queries alone, not whole
 /// renders, keeps shading and ray generation, which the accelerators share, out of the
@@ -1010,7 +1011,7 @@ pub fn crossover(
     backdrop: bool,
     runs: usize,
     leaf_size: usize,
-) -> Vec<(usize, [Duration; 3])> {
+) -> Vec<(usize, [Duration; 4])> {
     sizes
         .iter()
         .map(|&n| {
@@ -1031,7 +1032,11 @@ pub fn crossover(
                 .0
             };
             let flat = Accel::build(&scene.primitives, AccelKind::Flat, leaf_size);
-            (n, [time(&Accel::List), time(&flat), time(&sah)])
+            let sah4 = Accel::build(&scene.primitives, AccelKind::Sah4, leaf_size);
+            (
+                n,
+                [time(&Accel::List), time(&flat), time(&sah), time(&sah4)],
+            )
         })
         .collect()
 }

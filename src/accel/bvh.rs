@@ -646,8 +646,8 @@ impl Bvh {
         }
     }
 
-    /// Slab test of both boxes of a pair at once (the same decisions as [`super::aabb::slab`] on each): a
-    /// bit mask of the boxes hit (bit 0: child 0) and their entry distances.
+    /// Slab test of both boxes of a pair at once (the same decisions as [`super::aabb::slab`] on
+    /// each): a bit mask of the boxes hit (bit 0: child 0) and their entry distances.
     #[inline(always)]
     fn pair_hit<const NX: bool, const NY: bool, const NZ: bool>(
         pair: &NodePair,

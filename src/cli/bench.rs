@@ -135,12 +135,14 @@ fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
             "none_ms",
             "flat_ms",
             "sah_ms",
+            "sah4_ms",
             "flat/none",
             "sah/flat",
+            "sah4/flat",
         ];
         let mut rows = Vec::new();
         for (backdrop, name) in [(false, "sparse"), (true, "backdrop")] {
-            for (n, [none, flat, sah]) in crossover(sizes, backdrop, runs, leaf_size) {
+            for (n, [none, flat, sah, sah4]) in crossover(sizes, backdrop, runs, leaf_size) {
                 let ratio = |a: Duration, b: Duration| {
                     format!("{:.2}", a.as_secs_f64() / b.as_secs_f64().max(1e-12))
                 };
@@ -150,8 +152,10 @@ fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
                     format!("{:.3}", ms(none)),
                     format!("{:.3}", ms(flat)),
                     format!("{:.3}", ms(sah)),
+                    format!("{:.3}", ms(sah4)),
                     ratio(flat, none),
                     ratio(sah, flat),
+                    ratio(sah4, flat),
                 ]);
             }
         }
