@@ -15,7 +15,7 @@
 //!   them and the node is split at the middle of its list instead.
 //!
 //! Primitive indices are reordered so that each leaf's are contiguous, in blocks of four tested in
-//! SIMD lanes ([`super::leaves`]).
+//! SIMD lanes (`accel/leaves.rs`).
 //!
 //! Unbounded primitives (infinite planes, see [`crate::geometry::Shape::is_bounded`]) have no box
 //! to put in a node: they are kept out of the tree in a list of their own (`unbounded`), which
@@ -61,9 +61,9 @@ const _: () = assert!(SAH_BINS.is_power_of_two() && SAH_BINS >= 12);
 /// comparison: it is latency, not arithmetic, that the traversal waits on.
 pub const TRAVERSAL_COST: f32 = 2.0;
 
-/// Cost of testing one block of up to four primitives in SIMD lanes (see [`Block`]): a leaf of
-/// `n` primitives costs `⌈n/4⌉` of these, so the builder fills blocks rather than splitting a
-/// leaf of four that costs what a leaf of one costs. Against counting every primitive, this
+/// Cost of testing one block of up to four primitives in SIMD lanes (see `accel/leaves.rs`): a
+/// leaf of `n` primitives costs `⌈n/4⌉` of these, so the builder fills blocks rather than
+/// splitting a leaf of four that costs what a leaf of one costs. Against counting every primitive, this
 /// traced the 524,290-triangle grid's primary, shadow and incoherent rays 1.2×, 1.2× and 1.2×
 /// as fast and took 123 instead of 142 bytes per triangle (`raytracer bench --rays`, one thread,
 /// two runs each, interleaved).

@@ -16,7 +16,7 @@
 //! `raytracer bench --rays` by 14%: its branches cost more than the order saved); an any-hit
 //! query does not order them at all.
 //!
-//! The leaves are the binary tree's, unchanged ([`super::leaves`]), and every box test makes the
+//! The leaves are the binary tree's, unchanged (`accel/leaves.rs`), and every box test makes the
 //! decisions of [`super::aabb::slab`] lane for lane, so the answers are exactly those of every
 //! other accelerator (`tests/accel.rs`).
 
@@ -47,7 +47,9 @@ const MAX_WIDTH: usize = 8;
 
 /// Traversal stack entries for nodes of `width` children. A collapsed tree is no deeper than the
 /// binary tree it came from (at most [`STACK_SIZE`] levels), and a step pushes at most
-/// `width − 1` children.
+/// `width − 1` children. Every width's traversal takes the stack of [`MAX_WIDTH`] (an array's
+/// length cannot depend on `C` in stable Rust); its slots are not initialised until pushed, so
+/// the ones a four-wide traversal never reaches cost nothing.
 const fn stack_size(width: usize) -> usize {
     (width - 1) * STACK_SIZE
 }
