@@ -29,7 +29,6 @@ use glam::{Vec3A, Vec4, Vec4Swizzles};
 
 use super::aabb::Aabb;
 use super::beam::Beam;
-use super::gather;
 use super::kernels::Ray4;
 use super::leaves::{Best, Leaves};
 use super::stack::Stack;
@@ -625,17 +624,6 @@ impl Bvh {
         self.leaves.bytes()
     }
 
-    /// The primitives kept outside the tree (unbounded shapes), in index order.
-    pub fn unbounded(&self) -> &[u32] {
-        &self.unbounded
-    }
-
-    /// Child `side` of the interior node `n`.
-    #[inline(always)]
-    fn child(&self, n: NodeRef, side: usize) -> NodeRef {
-        self.node((n.index << 1) | side as u32)
-    }
-
     /// The node with identifier `id`: side `id & 1` of pair `id >> 1`.
     #[inline(always)]
     fn node(&self, id: u32) -> NodeRef {
@@ -669,31 +657,10 @@ impl Bvh {
 
     /// Node count, leaf count, depth and largest leaf.
     pub fn stats(&self) -> BvhStats {
-        let mut s = BvhStats {
-            nodes: self.node_count(),
-            ..BvhStats::default()
-        };
-        let Some((_, _, root)) = self.root else {
-            return s;
-        };
-        let mut stack = vec![(root, 0usize)];
-        while let Some((n, d)) = stack.pop() {
-            if n.count > 0 {
-                s.leaves += 1;
-                s.depth = s.depth.max(d);
-                s.max_leaf = s
-                    .max_leaf
-                    .max(self.leaves.primitives(n.index, n.count).count());
-            } else {
-                stack.push((self.child(n, 0), d + 1));
-                stack.push((self.child(n, 1), d + 1));
-            }
-        }
-        s
+        traverse::stats(self)
     }
 
-    /// See [`crate::accel::Accel::beam_candidates`]: the unbounded primitives, then the
-    /// primitives of every leaf whose box and own bounds meet the beam.
+    /// See [`crate::accel::Accel::beam_candidates`].
     pub fn beam_candidates(
         &self,
         prims: &[Primitive],
@@ -701,50 +668,7 @@ impl Bvh {
         limit: usize,
         out: &mut Vec<u32>,
     ) -> bool {
-        out.clear();
-        if !gather(beam, prims, self.unbounded.iter().copied(), limit, out) {
-            return false;
-        }
-        let Some((lo, hi, root)) = self.root else {
-            return true;
-        };
-        if !beam.may_hit_box(&Aabb::new(lo.into(), hi.into())) {
-            return true;
-        }
-        let mut stack: Stack<NodeRef, STACK_SIZE> = Stack::new();
-        stack.push(root);
-        while let Some(n) = stack.pop() {
-            if n.count > 0 {
-                if !gather(
-                    beam,
-                    prims,
-                    self.leaves.primitives(n.index, n.count),
-                    limit,
-                    out,
-                ) {
-                    return false;
-                }
-                continue;
-            }
-            let pair = &self.pairs[n.index as usize];
-            for side in 0..2 {
-                let b = Aabb::new(
-                    Vec3::new(pair.axes[0][side], pair.axes[1][side], pair.axes[2][side]),
-                    Vec3::new(
-                        pair.axes[0][2 + side],
-                        pair.axes[1][2 + side],
-                        pair.axes[2][2 + side],
-                    ),
-                );
-                if beam.may_hit_box(&b) {
-                    stack.push(NodeRef {
-                        index: pair.index(side),
-                        count: pair.count(side),
-                    });
-                }
-            }
-        }
-        true
+        traverse::beam_candidates(self, prims, beam, limit, out)
     }
 
     /// The closest hit with `0 < t < t_max` (least `t`, then least primitive index): the
@@ -783,6 +707,24 @@ impl Tree for Bvh {
 
     fn leaves(&self) -> &Leaves {
         &self.leaves
+    }
+
+    fn node_count(&self) -> usize {
+        Bvh::node_count(self)
+    }
+
+    fn children(&self, n: NodeRef) -> impl Iterator<Item = (Aabb, NodeRef)> + '_ {
+        let pair = &self.pairs[n.index as usize];
+        let a = &pair.axes;
+        (0..2).map(move |side| {
+            let lo = Vec3::new(a[0][side], a[1][side], a[2][side]);
+            let hi = Vec3::new(a[0][2 + side], a[1][2 + side], a[2][2 + side]);
+            let child = NodeRef {
+                index: pair.index(side),
+                count: pair.count(side),
+            };
+            (Aabb::new(lo, hi), child)
+        })
     }
 
     /// Visits the nearer child of a pair first and skips subtrees that start beyond the best hit

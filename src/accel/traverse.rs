@@ -1,16 +1,18 @@
 //! What the queries of every tree ([`super::Bvh`], [`super::wide::WideBvh`]) share around their
 //! own node loops: the unbounded primitives first, the root's box, a root that is itself a leaf,
 //! and one copy of the node loop per octant of the ray's direction, so that the box tests' choice
-//! of near and far planes is fixed at compile time.
+//! of near and far planes is fixed at compile time; and the walks that need no speed (a beam's
+//! candidates, the tree's shape), which see a node only through its children's boxes.
 
 use glam::Vec3A;
 
-use super::aabb::slab;
-use super::any_among;
-use super::bvh::NodeRef;
+use super::aabb::{slab, Aabb};
+use super::beam::Beam;
+use super::bvh::{BvhStats, NodeRef, STACK_SIZE};
 use super::kernels::Ray4;
 use super::leaves::{Best, Leaves};
 use super::stack::Stack;
+use super::{any_among, gather};
 use crate::geometry::{Candidate, Primitive};
 use crate::ray::PreparedRay;
 
@@ -24,6 +26,13 @@ pub(super) trait Tree {
     fn root(&self) -> Option<(Vec3A, Vec3A, NodeRef)>;
 
     fn leaves(&self) -> &Leaves;
+
+    /// Interior nodes.
+    fn node_count(&self) -> usize;
+
+    /// The box and reference of each child of the interior node `n` (unused slots too, with
+    /// their empty boxes and empty leaves).
+    fn children(&self, n: NodeRef) -> impl Iterator<Item = (Aabb, NodeRef)> + '_;
 
     /// The closest hit below the interior node `root`, whose box the ray meets, starting from
     /// `best`.
@@ -117,6 +126,78 @@ pub(super) fn any(
         6 => tree.any_below::<false, true, true>(prims, r, root, t_max, b),
         _ => tree.any_below::<true, true, true>(prims, r, root, t_max, b),
     }
+}
+
+/// Most children of a node of any tree here.
+pub(super) const MAX_WIDTH: usize = 8;
+
+/// Entries of a traversal stack: enough for any tree here (a tree is at most [`STACK_SIZE`]
+/// levels deep, and a step pushes all but one of a node's children). A stack's slots are not
+/// initialised until pushed, so a narrower tree pays nothing for the ones it never reaches.
+pub(super) const TRAVERSAL_STACK_SIZE: usize = (MAX_WIDTH - 1) * STACK_SIZE;
+
+/// See [`crate::accel::Accel::beam_candidates`]: the unbounded primitives, then the primitives
+/// of every leaf whose box and own bounds meet the beam.
+pub(super) fn beam_candidates(
+    tree: &impl Tree,
+    prims: &[Primitive],
+    beam: &Beam,
+    limit: usize,
+    out: &mut Vec<u32>,
+) -> bool {
+    out.clear();
+    if !gather(beam, prims, tree.unbounded().iter().copied(), limit, out) {
+        return false;
+    }
+    let Some((lo, hi, root)) = tree.root() else {
+        return true;
+    };
+    if !beam.may_hit_box(&Aabb::new(lo.into(), hi.into())) {
+        return true;
+    }
+    let mut stack: Stack<NodeRef, TRAVERSAL_STACK_SIZE> = Stack::new();
+    stack.push(root);
+    while let Some(n) = stack.pop() {
+        if n.count > 0 {
+            let leaf = tree.leaves().primitives(n.index, n.count);
+            if !gather(beam, prims, leaf, limit, out) {
+                return false;
+            }
+            continue;
+        }
+        for (b, child) in tree.children(n) {
+            if beam.may_hit_box(&b) {
+                stack.push(child);
+            }
+        }
+    }
+    true
+}
+
+/// Node count, leaf count, depth and largest leaf. The empty leaves unused slots point at are
+/// not counted.
+pub(super) fn stats(tree: &impl Tree) -> BvhStats {
+    let mut s = BvhStats {
+        nodes: tree.node_count(),
+        ..BvhStats::default()
+    };
+    let Some((_, _, root)) = tree.root() else {
+        return s;
+    };
+    let mut stack = vec![(root, 0usize)];
+    while let Some((n, d)) = stack.pop() {
+        if n.count > 0 {
+            let size = tree.leaves().primitives(n.index, n.count).count();
+            if size > 0 || n == root {
+                s.leaves += 1;
+                s.depth = s.depth.max(d);
+                s.max_leaf = s.max_leaf.max(size);
+            }
+        } else {
+            stack.extend(tree.children(n).map(|(_, child)| (child, d + 1)));
+        }
+    }
+    s
 }
 
 /// The next deferred subtree of a closest-hit traversal whose entry distance is not beyond

@@ -24,14 +24,11 @@ use glam::{Vec3A, Vec4};
 
 use super::aabb::Aabb;
 use super::beam::Beam;
-use super::bvh::{
-    BinaryTree, BvhOptions, BvhStats, Node as BinaryNode, NodeRef, Split, STACK_SIZE,
-};
-use super::gather;
+use super::bvh::{BinaryTree, BvhOptions, BvhStats, Node as BinaryNode, NodeRef, Split};
 use super::kernels::Ray4;
 use super::leaves::{lanes, Best, Leaves};
 use super::stack::Stack;
-use super::traverse::{self, next_within, Tree};
+use super::traverse::{self, next_within, Tree, MAX_WIDTH, TRAVERSAL_STACK_SIZE};
 use crate::geometry::{Candidate, Primitive};
 use crate::math::Vec3;
 use crate::ray::PreparedRay;
@@ -41,18 +38,6 @@ pub type Bvh4 = WideBvh<1>;
 
 /// The eight-wide BVH.
 pub type Bvh8 = WideBvh<2>;
-
-/// Most children of a node of any width here.
-const MAX_WIDTH: usize = 8;
-
-/// Traversal stack entries for nodes of `width` children. A collapsed tree is no deeper than the
-/// binary tree it came from (at most [`STACK_SIZE`] levels), and a step pushes at most
-/// `width − 1` children. Every width's traversal takes the stack of [`MAX_WIDTH`] (an array's
-/// length cannot depend on `C` in stable Rust); its slots are not initialised until pushed, so
-/// the ones a four-wide traversal never reaches cost nothing.
-const fn stack_size(width: usize) -> usize {
-    (width - 1) * STACK_SIZE
-}
 
 /// `4·C` children (`C` groups of four, each one SIMD test): per axis, the lower and the upper
 /// bounds, then each child's reference (`count == 0`: node `index`; else the leaf
@@ -72,7 +57,10 @@ const _: () = assert!(std::mem::size_of::<Node<1>>() == 128);
 const _: () = assert!(std::mem::size_of::<Node<2>>() == 256);
 
 impl<const C: usize> Node<C> {
-    const WIDTH: usize = 4 * C;
+    const WIDTH: usize = {
+        assert!(4 * C <= MAX_WIDTH, "wider than the traversal stack allows");
+        4 * C
+    };
 
     fn empty((index, count): (u32, u32)) -> Node<C> {
         Node {
@@ -269,40 +257,13 @@ impl<const C: usize> WideBvh<C> {
         self.leaves.bytes()
     }
 
-    /// The primitives kept outside the tree (unbounded shapes), in index order.
-    pub fn unbounded(&self) -> &[u32] {
-        &self.unbounded
-    }
-
-    /// Node count, leaf count, depth (in wide levels) and largest leaf. Unused slots are
-    /// not counted.
+    /// Node count, leaf count, depth (in wide levels) and largest leaf. Unused slots are not
+    /// counted.
     pub fn stats(&self) -> BvhStats {
-        let mut s = BvhStats {
-            nodes: self.nodes.len(),
-            ..BvhStats::default()
-        };
-        let Some((_, _, root)) = self.root else {
-            return s;
-        };
-        let mut stack = vec![(root, 0usize)];
-        while let Some((n, d)) = stack.pop() {
-            if n.count > 0 {
-                let size = self.leaves.primitives(n.index, n.count).count();
-                if size > 0 || n == root {
-                    s.leaves += 1;
-                    s.depth = s.depth.max(d);
-                    s.max_leaf = s.max_leaf.max(size);
-                }
-            } else {
-                let node = &self.nodes[n.index as usize];
-                stack.extend((0..Node::<C>::WIDTH).map(|l| (node.child(l), d + 1)));
-            }
-        }
-        s
+        traverse::stats(self)
     }
 
-    /// See [`crate::accel::Accel::beam_candidates`]: the unbounded primitives, then the
-    /// primitives of every leaf whose box and own bounds meet the beam.
+    /// See [`crate::accel::Accel::beam_candidates`].
     pub fn beam_candidates(
         &self,
         prims: &[Primitive],
@@ -310,33 +271,7 @@ impl<const C: usize> WideBvh<C> {
         limit: usize,
         out: &mut Vec<u32>,
     ) -> bool {
-        out.clear();
-        if !gather(beam, prims, self.unbounded.iter().copied(), limit, out) {
-            return false;
-        }
-        let Some((lo, hi, root)) = self.root else {
-            return true;
-        };
-        if !beam.may_hit_box(&Aabb::new(lo.into(), hi.into())) {
-            return true;
-        }
-        let mut stack: Stack<NodeRef, { stack_size(MAX_WIDTH) }> = Stack::new();
-        stack.push(root);
-        while let Some(n) = stack.pop() {
-            if n.count > 0 {
-                let leaf = self.leaves.primitives(n.index, n.count);
-                if !gather(beam, prims, leaf, limit, out) {
-                    return false;
-                }
-                continue;
-            }
-            for (b, child) in self.nodes[n.index as usize].boxes() {
-                if beam.may_hit_box(&b) {
-                    stack.push(child);
-                }
-            }
-        }
-        true
+        traverse::beam_candidates(self, prims, beam, limit, out)
     }
 
     /// The closest hit with `0 < t < t_max` (least `t`, then least primitive index): the
@@ -377,6 +312,14 @@ impl<const C: usize> Tree for WideBvh<C> {
         &self.leaves
     }
 
+    fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    fn children(&self, n: NodeRef) -> impl Iterator<Item = (Aabb, NodeRef)> + '_ {
+        self.nodes[n.index as usize].boxes()
+    }
+
     /// Visits the nearest hit child first and skips subtrees that start beyond the best hit so
     /// far.
     fn closest_below<const NX: bool, const NY: bool, const NZ: bool>(
@@ -388,7 +331,7 @@ impl<const C: usize> Tree for WideBvh<C> {
     ) -> Option<(u32, Candidate)> {
         let r4 = Ray4::new(r);
         // Entries: a child and its entry distance.
-        let mut stack: Stack<(NodeRef, f32), { stack_size(MAX_WIDTH) }> = Stack::new();
+        let mut stack: Stack<(NodeRef, f32), TRAVERSAL_STACK_SIZE> = Stack::new();
         let mut n = root;
         loop {
             if n.count == 0 {
@@ -429,7 +372,7 @@ impl<const C: usize> Tree for WideBvh<C> {
         blocks: &mut impl FnMut(u32) -> bool,
     ) -> bool {
         let r4 = Ray4::new(r);
-        let mut stack: Stack<NodeRef, { stack_size(MAX_WIDTH) }> = Stack::new();
+        let mut stack: Stack<NodeRef, TRAVERSAL_STACK_SIZE> = Stack::new();
         let mut n = root;
         loop {
             if n.count == 0 {
