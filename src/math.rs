@@ -128,6 +128,22 @@ pub fn max_dimension(v: Vec3) -> usize {
     }
 }
 
+/// The square root of each lane: IEEE `sqrt` is correctly rounded, so lane `l` holds the bits of
+/// `v[l].sqrt()` whether the CPU takes one packed instruction or four scalar ones.
+#[inline(always)]
+pub fn sqrt4(v: glam::Vec4) -> glam::Vec4 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    {
+        // SAFETY: SSE2 is enabled for this target (checked at compile time above), and
+        // `_mm_sqrt_ps` only reads its register operand.
+        unsafe { glam::Vec4::from(std::arch::x86_64::_mm_sqrt_ps(v.into())) }
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    {
+        glam::Vec4::from_array(v.to_array().map(f32::sqrt))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

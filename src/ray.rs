@@ -2,7 +2,7 @@
 //! surface they leave.
 
 use crate::math::{Vec2, Vec3};
-use glam::{BVec3A, Vec3A};
+use glam::{BVec3A, Vec3A, Vec4};
 
 /// A ray `origin + t·dir`. `dir` need not be unit length for intersection, but every ray the
 /// renderer spawns has a unit direction so that `t` is a distance.
@@ -162,16 +162,46 @@ pub struct SpawnPoints {
     below: Vec3,
 }
 
+/// Which of a hit's two spawn origins a ray leaves from (see [`SpawnPoints`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    /// Just above the surface, for directions with `w · normal ≥ 0`.
+    Above = 0,
+    /// Just below it, for directions with `w · normal < 0`.
+    Below = 1,
+}
+
 impl SpawnPoints {
-    /// The origin of a ray leaving in direction `w`: `offset_ray_origin` depends on the direction
-    /// only through the sign of `w · normal`.
+    /// The side a ray leaving in direction `w` starts on: `offset_ray_origin` depends on the
+    /// direction only through the sign of `w · normal`.
+    #[inline]
+    fn side(&self, w: Vec3) -> Side {
+        if w.dot(self.normal) < 0.0 {
+            Side::Below
+        } else {
+            Side::Above
+        }
+    }
+
+    /// The origin on `side`.
+    #[inline]
+    pub fn origin_on(&self, side: Side) -> Vec3 {
+        match side {
+            Side::Above => self.above,
+            Side::Below => self.below,
+        }
+    }
+
+    /// The origin of a ray leaving in direction `w`.
     #[inline]
     fn origin(&self, w: Vec3) -> Vec3 {
-        if w.dot(self.normal) < 0.0 {
-            self.below
-        } else {
-            self.above
-        }
+        self.origin_on(self.side(w))
+    }
+
+    /// The side the ray of [`SpawnPoints::ray_to`] `target` starts on.
+    #[inline]
+    pub fn side_to(&self, target: Vec3) -> Side {
+        self.side((target - self.point).normalize_or_zero())
     }
 
     /// [`Hit::spawn`] from the hit these points were made for.
@@ -191,10 +221,60 @@ impl SpawnPoints {
     /// [`Hit::spawn_to`] from the hit these points were made for.
     #[inline]
     pub fn ray_to(&self, target: Vec3) -> (Ray, f32) {
-        let origin = self.origin((target - self.point).normalize_or_zero());
+        self.ray_from(self.side_to(target), target)
+    }
+
+    /// The ray of [`SpawnPoints::ray_to`] `target`, whose side `side` the caller has found with
+    /// [`SpawnPoints::side_to`].
+    #[inline]
+    pub fn ray_from(&self, side: Side, target: Vec3) -> (Ray, f32) {
+        let origin = self.origin_on(side);
         let to = target - origin;
         let dist = to.length();
         (Ray::new(origin, to / dist.max(f32::MIN_POSITIVE)), dist)
+    }
+}
+
+/// Four rays of [`SpawnPoints::rays_to4`], per world axis one lane per ray.
+#[derive(Debug, Clone, Copy)]
+pub struct RaysTo4 {
+    pub origin: [Vec4; 3],
+    pub dir: [Vec4; 3],
+    /// The distance from each origin to its target.
+    pub dist: Vec4,
+    /// Bit `l` is set where ray `l` leaves from [`Side::Below`].
+    pub below: u32,
+}
+
+impl SpawnPoints {
+    /// [`SpawnPoints::ray_to`] for four targets at once (per world axis one lane per target):
+    /// lane by lane the same operations in the same order, so the same bits, with the side each
+    /// ray leaves from.
+    #[inline(always)]
+    pub fn rays_to4(&self, target: [Vec4; 3]) -> RaysTo4 {
+        let zero = Vec4::ZERO;
+        let dot = |a: &[Vec4; 3], b: &[Vec4; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let splat = |v: Vec3| v.to_array().map(Vec4::splat);
+        let [point, normal, above, below] =
+            [self.point, self.normal, self.above, self.below].map(splat);
+        // `side_to`: the sign of `normalize_or_zero(target − point) · normal`.
+        let w = [0, 1, 2].map(|a| target[a] - point[a]);
+        let rcp = Vec4::ONE / crate::math::sqrt4(dot(&w, &w));
+        let normalized = rcp.abs().cmplt(Vec4::INFINITY) & rcp.cmpgt(zero);
+        let w = w.map(|c| Vec4::select(normalized, c * rcp, zero));
+        let leaves_below = dot(&w, &normal).cmplt(zero);
+        // `ray_from`.
+        let origin = [0, 1, 2].map(|a| Vec4::select(leaves_below, below[a], above[a]));
+        let to = [0, 1, 2].map(|a| target[a] - origin[a]);
+        let dist = crate::math::sqrt4(dot(&to, &to));
+        // `max` returns its second operand for NaN, as `f32::max` returns the number.
+        let len = dist.max(Vec4::splat(f32::MIN_POSITIVE));
+        RaysTo4 {
+            origin,
+            dir: to.map(|c| c / len),
+            dist,
+            below: leaves_below.bitmask(),
+        }
     }
 }
 
@@ -225,6 +305,26 @@ mod tests {
         assert!(up.z > p.z + 1e-6 * 0.99);
         assert!(down.z < p.z - 1e-6 * 0.99);
         assert_eq!(up.x, p.x);
+    }
+
+    /// [`SpawnPoints::rays_to4`] against [`SpawnPoints::ray_to`], lane by lane, bit for bit.
+    fn lanes_give_ray_to(points: &SpawnPoints, targets: [Vec3; 4]) {
+        let lanes = [0, 1, 2].map(|a| Vec4::from_array(targets.map(|t| t[a])));
+        let r4 = points.rays_to4(lanes);
+        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+        for (l, &target) in targets.iter().enumerate() {
+            let (ray, dist) = points.ray_to(target);
+            let lane = |v: [Vec4; 3]| Vec3::new(v[0][l], v[1][l], v[2][l]);
+            assert_eq!(bits(lane(r4.origin)), bits(ray.origin), "{target}");
+            assert_eq!(bits(lane(r4.dir)), bits(ray.dir), "{target}");
+            assert_eq!(r4.dist[l].to_bits(), dist.to_bits(), "{target}");
+            let side = if r4.below & (1 << l) != 0 {
+                Side::Below
+            } else {
+                Side::Above
+            };
+            assert_eq!(side, points.side_to(target));
+        }
     }
 
     #[test]
@@ -258,6 +358,7 @@ mod tests {
                 hit.point,
             ] {
                 assert_eq!(points.ray_to(target), hit.spawn_to(target));
+                lanes_give_ray_to(&points, [target, hit.point + dir, target, hit.point]);
                 let w = (target - hit.point).normalize_or(normal);
                 assert_eq!(points.ray(w), hit.spawn(w));
             }

@@ -36,6 +36,11 @@ pub struct Beam {
     length: f32,
     /// Added to every bounding radius: the origin offset and the absolute slack.
     grow: f32,
+    /// The box the rays end in (the light's).
+    target: Aabb,
+    /// The absolute slack: how far beyond `target` a computed sample point may lie, with room
+    /// to spare.
+    slack: f32,
 }
 
 impl Beam {
@@ -91,7 +96,28 @@ impl Beam {
             sin_half: (1.0 - cos_half * cos_half).max(0.0).sqrt(),
             length: length * (1.0 + SLACK),
             grow: offset + SLACK * scale,
+            target: *target,
+            slack: SLACK * scale,
         })
+    }
+
+    /// Whether no ray of the beam that starts at `origin` can meet the box `b` at any `t ≥ 0`,
+    /// decided without rounding: on some axis `origin` lies strictly beyond one side of `b`
+    /// and the whole light (grown by the slack) lies at least as far beyond it. Every such ray's
+    /// direction then points away from `b` on that axis, or along it (the difference
+    /// `target − origin` has the sign of its exact value), so both of the slab test's distances
+    /// for that axis are negative ([`crate::accel::aabb::slab`]: a nonzero difference times a
+    /// reciprocal of the other sign, or times ∞ for a zero direction component) and the test
+    /// rejects `b`. A primitive whose bounds are `b` never reports a hit on such a ray
+    /// ([`crate::geometry::Shape::intersect_prepared`] keeps only hits inside its bounds), so
+    /// leaving it out changes no answer. This is what a floor's triangles, which hold the
+    /// shading points above them in their bounding balls, get from it: every ray towards a light
+    /// above them starts above them.
+    #[inline]
+    pub fn leaves_behind(&self, origin: Vec3, b: &Aabb) -> bool {
+        let (lo, hi) = (self.target.min - self.slack, self.target.max + self.slack);
+        (origin.cmpgt(b.max) & lo.cmpge(origin)).any()
+            || (origin.cmplt(b.min) & hi.cmple(origin)).any()
     }
 
     /// Whether some ray of the beam may meet the ball `(center, radius)`; `false` only where

@@ -27,6 +27,7 @@ pub use bvh::{Bvh, BvhOptions, BvhStats, Split};
 pub use wide::{Bvh4, Bvh8};
 
 use crate::geometry::{Candidate, Primitive, Shape};
+use crate::math::Vec3;
 use crate::ray::{PreparedRay, Ray};
 
 /// Which accelerator to build.
@@ -295,6 +296,24 @@ pub(crate) fn any_among(
             .is_some()
             && blocks(i)
     })
+}
+
+/// Of `candidates` (gathered for `beam`), those a ray of the beam leaving from `origin` may
+/// still hit, written to `out`: all but the bounded primitives it leaves behind
+/// ([`Beam::leaves_behind`]). Testing only these answers every such ray as testing all the
+/// candidates does.
+pub fn reachable_from(
+    prims: &[Primitive],
+    beam: &Beam,
+    candidates: &[u32],
+    origin: Vec3,
+    out: &mut Vec<u32>,
+) {
+    out.clear();
+    out.extend(candidates.iter().copied().filter(|&p| {
+        let shape = &prims[p as usize].shape;
+        !(shape.is_bounded() && beam.leaves_behind(origin, &shape.bounds()))
+    }));
 }
 
 /// Appends to `out` those of the primitives `indices` that some ray of `beam` may hit; `false`

@@ -1,4 +1,6 @@
-//! SIMD kernels of the accelerators: one ray against four shapes at once, in `glam::Vec4` lanes.
+//! SIMD kernels of the accelerators: one ray against four shapes at once, in `glam::Vec4` lanes
+//! ([`Sphere4`], [`Triangle4`]), and four rays against one shape ([`Rays4`], for the shadow rays
+//! of an area light).
 //!
 //! Each kernel has a scalar twin in [`crate::geometry`] ([`crate::geometry::Shape::intersect_prepared`])
 //! and gives, lane for lane, the bits that twin gives: every step is an IEEE `f32` operation in
@@ -9,10 +11,12 @@
 //! rays, so the BVHs built on them keep the contract of [`crate::accel`].
 
 pub mod ray4;
+pub mod rays4;
 pub mod sphere4;
 pub mod triangle4;
 
 pub use ray4::{Hits4, Ray4};
+pub use rays4::Rays4;
 pub use sphere4::Sphere4;
 pub use triangle4::Triangle4;
 

@@ -52,15 +52,19 @@ use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::accel::aabb::Aabb;
-use crate::accel::{Accel, Beam};
+use crate::accel::{reachable_from, Accel, Beam};
 use crate::light::Light;
 use crate::material::{highlight, Reflection};
 use crate::math::{fresnel_dielectric, local_to_world, reflect, refract, Vec2, Vec3};
-use crate::ray::{Hit, Ray, SpawnPoints};
+use crate::ray::{Hit, Ray, Side, SpawnPoints};
 use crate::sampling::{blinn_phong_half_vector, Method, SampleKey};
 use crate::scene::{RenderMode, Scene};
 
 use super::{finite_radiance, RayCounts, TraceOptions, LIGHT_CLEARANCE};
+
+mod quad_lanes;
+
+use quad_lanes::{Quad, Shading};
 
 /// Shadow rays towards one area light between two looks at [`Whitted::cancel`]: one look is one
 /// relaxed load, small beside this many rays, and the longest stretch without one (an area light
@@ -156,6 +160,11 @@ pub struct Whitted<'a> {
     light_bounds: Vec<Option<Aabb>>,
     /// The candidates of the current light's beam, kept to reuse their memory.
     candidates: Vec<u32>,
+    /// Of those, the ones a ray from either spawn origin may reach ([`Side`] as index).
+    reachable: [Vec<u32>; 2],
+    /// Whether quad lights take their samples four at a time ([`quad_lanes`]); only the
+    /// tests that hold the lanes to the one-sample loop turn it off.
+    lanes: bool,
 }
 
 impl<'a> Whitted<'a> {
@@ -171,6 +180,8 @@ impl<'a> Whitted<'a> {
             open: Vec::new(),
             light_bounds: scene.lights.iter().map(Light::bounds).collect(),
             candidates: Vec::new(),
+            reachable: [Vec::new(), Vec::new()],
+            lanes: true,
         }
     }
 
@@ -294,7 +305,19 @@ impl<'a> Whitted<'a> {
             color += material.emission;
         }
         let spawn = hit.spawn_points();
+        let shading = Shading {
+            point: hit.point,
+            spawn: &spawn,
+            n,
+            ns,
+            v,
+            kd_base: material.kd * base,
+            ks_specular: material.ks * material.specular,
+            has_highlight: material.ks > 0.0,
+            exponent: material.exponent,
+        };
         let mut candidates = std::mem::take(&mut self.candidates);
+        let mut reachable = std::mem::take(&mut self.reachable);
         for (li, light) in scene.lights.iter().enumerate() {
             let (count, method) = self.options.light_plan(light);
             // Each sample carries 1/count of what one sample alone would (its `weight`).
@@ -310,7 +333,8 @@ impl<'a> Whitted<'a> {
             if known == Some(0.0) {
                 continue; // every probe is blocked: the light is taken as fully hidden
             }
-            // The primitives this light's shadow rays may meet, once for all of them.
+            // The primitives this light's shadow rays may meet, once for all of them, and of
+            // those the ones the rays from each spawn origin may meet.
             let only = (count > 1 && known.is_none())
                 .then(|| self.light_bounds[li])
                 .flatten()
@@ -323,10 +347,43 @@ impl<'a> Whitted<'a> {
                         &mut candidates,
                     )
                 })
-                .map(|_| candidates.as_slice());
+                .map(|beam| {
+                    for (side, out) in [Side::Above, Side::Below].into_iter().zip(&mut reachable) {
+                        let origin = spawn.origin_on(side);
+                        reachable_from(&scene.primitives, &beam, &candidates, origin, out);
+                    }
+                    [reachable[0].as_slice(), reachable[1].as_slice()]
+                });
+            if let (
+                Light::Quad {
+                    origin,
+                    edge_u,
+                    edge_v,
+                    ..
+                },
+                None,
+                true,
+            ) = (light, known, count > 1 && self.lanes)
+            {
+                let quad = Quad {
+                    origin: *origin,
+                    edge_u: *edge_u,
+                    edge_v: *edge_v,
+                };
+                let done = self.quad_light_lanes(
+                    &mut color, &shading, &quad, &points, count, share, light, &surface, only,
+                );
+                if !done {
+                    self.candidates = candidates;
+                    self.reachable = reachable;
+                    return color;
+                }
+                continue;
+            }
             for s in 0..count {
                 if s % SHADOW_RAYS_PER_CANCEL_CHECK == 0 && self.cancelled() {
                     self.candidates = candidates;
+                    self.reachable = reachable;
                     return color;
                 }
                 let sample = if count == 1 {
@@ -359,6 +416,7 @@ impl<'a> Whitted<'a> {
         }
 
         self.candidates = candidates;
+        self.reachable = reachable;
         if scene.reflection == Reflection::Blended && material.kt == 0.0 && material.kr > 0.0 {
             // The mirror shows what it reflects in place of its own shading.
             color *= 1.0 - material.kr.min(1.0);
@@ -452,19 +510,25 @@ impl<'a> Whitted<'a> {
     /// `kt < 1` and nothing opaque walk their crossings one closest hit at a time, as the
     /// product of `kt` needs.
     ///
-    /// `only`, where given, lists every primitive the ray can meet (see [`Beam`]); the any-hit
-    /// query tests just those.
+    /// `only`, where given, lists every primitive the ray can meet when it leaves from either
+    /// spawn origin (see [`Beam`]; [`Side`] as index); the any-hit query tests just those, and a
+    /// ray that can meet none is not traced: its answer is 1.
     fn transmittance(
         &mut self,
         from: &SpawnPoints,
         target: Vec3,
         surface: &Range<u32>,
-        only: Option<&[u32]>,
+        only: Option<[&[u32]; 2]>,
     ) -> f32 {
         let scene = self.scene;
         let prims = &scene.primitives;
         self.counts.shadow += 1;
-        let (ray, dist) = from.ray_to(target);
+        let side = from.side_to(target);
+        let only = only.map(|lists| lists[side as usize]);
+        if only.is_some_and(|c| c.is_empty()) {
+            return 1.0; // what the query below answers when it has nothing to test
+        }
+        let (ray, dist) = from.ray_from(side, target);
         let t_max = dist * (1.0 - LIGHT_CLEARANCE);
         let any = |blocks: &mut dyn FnMut(u32) -> bool| match only {
             Some(candidates) => self.accel.any_of(prims, candidates, &ray, t_max, blocks),
@@ -497,8 +561,18 @@ impl<'a> Whitted<'a> {
         if !crosses || (clear && 2 * passed <= MAX_SHADOW_CROSSINGS) {
             return 1.0;
         }
-        let mut ray = ray;
-        let mut t_max = t_max;
+        self.walk_crossings(from, target, surface)
+    }
+
+    /// The transmittance towards `target` one closest hit at a time: the product of the `kt`
+    /// of every surface crossed (the light's own passed through), 0 at an opaque one or past
+    /// [`MAX_SHADOW_CROSSINGS`] crossings. What [`Whitted::transmittance`] falls back to for rays
+    /// through glass of `kt < 1`.
+    fn walk_crossings(&mut self, from: &SpawnPoints, target: Vec3, surface: &Range<u32>) -> f32 {
+        let scene = self.scene;
+        let prims = &scene.primitives;
+        let (mut ray, dist) = from.ray_to(target);
+        let mut t_max = dist * (1.0 - LIGHT_CLEARANCE);
         let mut through = 1.0;
         for _ in 0..MAX_SHADOW_CROSSINGS {
             let Some((p, c)) = self.accel.closest(prims, &ray, t_max) else {

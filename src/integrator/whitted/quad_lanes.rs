@@ -1,0 +1,342 @@
+//! A quad light's samples from one shading point, four at a time in SIMD lanes: the sample
+//! points, the shadow rays (built by [`SpawnPoints::rays_to4`] and tested four at a time against
+//! each of the beam's spheres by [`Rays4`]), and the light terms. Lane by lane every value is the
+//! one-sample loop's ([`Whitted::shade`]), operation for operation, and the terms are added to
+//! the colour one sample after another in the loop's order, so the picture has the same bits
+//! (the tests below hold the two to each other pixel by pixel on a scene with every kind of
+//! blocker, and `tests/golden.rs` holds the pictures).
+//!
+//! What lanes do not pay for stays one lane at a time: the sample points' hashes, the light's
+//! fall-off, the highlight's power, shapes other than spheres, and the rare shadow ray that must
+//! walk its crossings through glass of `kt < 1`.
+
+use glam::Vec4;
+
+use super::Whitted;
+use crate::accel::kernels::Rays4;
+use crate::geometry::Shape;
+use crate::material::highlight;
+use crate::math::{sqrt4, Vec3};
+use crate::ray::{PreparedRay, Ray, SpawnPoints};
+use crate::sampling::PointSet;
+
+use super::super::LIGHT_CLEARANCE;
+use super::{MAX_SHADOW_CROSSINGS, SHADOW_RAYS_PER_CANCEL_CHECK};
+
+/// The quad light `origin + s·edge_u + t·edge_v`.
+pub(super) struct Quad {
+    pub origin: Vec3,
+    pub edge_u: Vec3,
+    pub edge_v: Vec3,
+}
+
+/// What the light terms of one shading point share.
+pub(super) struct Shading<'s> {
+    pub point: Vec3,
+    pub spawn: &'s SpawnPoints,
+    /// The geometric normal turned towards the viewer (what decides whether a sample is behind
+    /// the surface we see).
+    pub n: Vec3,
+    /// The shading normal, turned the same way.
+    pub ns: Vec3,
+    /// Towards the viewer.
+    pub v: Vec3,
+    /// `kd · base` and `ks · specular`: the material's factors of the two terms.
+    pub kd_base: Vec3,
+    pub ks_specular: Vec3,
+    /// Whether there is a highlight (`ks > 0`), and its exponent.
+    pub has_highlight: bool,
+    pub exponent: f32,
+}
+
+/// `a · b` per lane, in [`Vec3::dot`]'s order.
+#[inline(always)]
+fn dot(a: &[Vec4; 3], b: &[Vec4; 3]) -> Vec4 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline(always)]
+fn splat(v: Vec3) -> [Vec4; 3] {
+    v.to_array().map(Vec4::splat)
+}
+
+#[inline(always)]
+fn lane(v: &[Vec4; 3], l: usize) -> Vec3 {
+    Vec3::new(v[0][l], v[1][l], v[2][l])
+}
+
+impl Whitted<'_> {
+    /// Adds to `color` the terms of samples `0..count` of `quad` (each of `share` of the light,
+    /// `points` their points), as the one-sample loop does; `reachable` lists, per side the
+    /// shadow rays leave from, the primitives they may meet. `false` if the render was cancelled
+    /// on the way (then `color` holds the samples before).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn quad_light_lanes(
+        &mut self,
+        color: &mut Vec3,
+        s: &Shading,
+        quad: &Quad,
+        points: &PointSet,
+        count: u32,
+        share: f32,
+        light: &crate::light::Light,
+        surface: &std::ops::Range<u32>,
+        reachable: Option<[&[u32]; 2]>,
+    ) -> bool {
+        let intensity = light.intensity();
+        let diffuse = s.kd_base * intensity.diffuse;
+        let specular = s.ks_specular * intensity.specular;
+        let (origin, edge_u, edge_v) = (splat(quad.origin), splat(quad.edge_u), splat(quad.edge_v));
+        let (point, n, ns, v) = (splat(s.point), splat(s.n), splat(s.ns), splat(s.v));
+        for first in (0..count).step_by(4) {
+            if first % SHADOW_RAYS_PER_CANCEL_CHECK == 0 && self.cancelled() {
+                return false;
+            }
+            let lanes = (count - first).min(4);
+            let mut ux = Vec4::ZERO;
+            let mut uy = Vec4::ZERO;
+            for l in 0..lanes as usize {
+                let u = points.point(first + l as u32);
+                ux[l] = u.x;
+                uy[l] = u.y;
+            }
+            // `Light::sample` of a quad, then the loop's `to_light` and its test.
+            let target = [0, 1, 2].map(|a| origin[a] + ux * edge_u[a] + uy * edge_v[a]);
+            let to_light = [0, 1, 2].map(|a| target[a] - point[a]);
+            let behind = dot(&to_light, &n).cmple(Vec4::ZERO).bitmask();
+            let live = ((1u32 << lanes) - 1) & !behind;
+            if live == 0 {
+                continue;
+            }
+            let d2 = dot(&to_light, &to_light);
+            let visibility = self.transmittance4(s.spawn, target, live, surface, reachable);
+            // The terms, in lanes, of the samples that see the light.
+            let l_dir = to_light.map(|c| c / sqrt4(d2));
+            let n_dot_l = dot(&ns, &l_dir).max(Vec4::ZERO);
+            let cos_h = if s.has_highlight {
+                let h = [0, 1, 2].map(|a| l_dir[a] + v[a]);
+                let rcp = Vec4::ONE / sqrt4(dot(&h, &h));
+                let ok = rcp.abs().cmplt(Vec4::INFINITY) & rcp.cmpgt(Vec4::ZERO);
+                let h = h.map(|c| Vec4::select(ok, c * rcp, Vec4::ZERO));
+                dot(&ns, &h).max(Vec4::ZERO)
+            } else {
+                Vec4::ZERO
+            };
+            for l in 0..lanes as usize {
+                if live & (1 << l) == 0 || visibility[l] == 0.0 {
+                    continue;
+                }
+                // `sample.weight` is 1 for a quad.
+                let e = share * 1.0 * intensity.falloff(d2[l]) * visibility[l];
+                *color += diffuse * (n_dot_l[l] * e);
+                if s.has_highlight {
+                    let spec = highlight(cos_h[l], s.exponent);
+                    *color += specular * (spec * e);
+                }
+            }
+        }
+        true
+    }
+
+    /// [`Whitted::transmittance`] towards four targets (the lanes `live` of `target`), lane by
+    /// lane the same answer.
+    fn transmittance4(
+        &mut self,
+        spawn: &SpawnPoints,
+        target: [Vec4; 3],
+        live: u32,
+        surface: &std::ops::Range<u32>,
+        reachable: Option<[&[u32]; 2]>,
+    ) -> [f32; 4] {
+        let mut answer = [1.0f32; 4];
+        let Some(reachable) = reachable else {
+            // No beam: each ray queries the whole accelerator.
+            for (l, a) in answer.iter_mut().enumerate() {
+                if live & (1 << l) != 0 {
+                    *a = self.transmittance(spawn, lane(&target, l), surface, None);
+                }
+            }
+            return answer;
+        };
+        let scene = self.scene;
+        let prims = &scene.primitives;
+        self.counts.shadow += live.count_ones() as u64;
+        let rays = spawn.rays_to4(target);
+        let t_max = rays.dist * Vec4::splat(1.0 - LIGHT_CLEARANCE);
+        // A bound that is NaN or not positive finds nothing (`Accel::any_of`): the answer is 1.
+        let valid = live & t_max.cmpgt(Vec4::ZERO).bitmask();
+        let rays4 = Rays4::new(rays.origin, rays.dir);
+        // Lanes an opaque primitive stops.
+        let mut blocked = 0u32;
+        for (side, list) in reachable.iter().enumerate() {
+            let below = if side == 1 { rays.below } else { !rays.below };
+            let mut open = valid & below;
+            if open == 0 || list.is_empty() {
+                continue;
+            }
+            // What the any-hit query's filter notes on the way, per lane.
+            let mut passed = [0u32; 4];
+            let mut crosses = 0u32;
+            let mut unclear = 0u32;
+            for &p in list.iter() {
+                if open == 0 {
+                    break;
+                }
+                let prim = &prims[p as usize];
+                let hit = match &prim.shape {
+                    Shape::Sphere(sphere) => rays4.hit_sphere(sphere, t_max) & open,
+                    shape => (0..4)
+                        .filter(|&l| open & (1 << l) != 0)
+                        .filter(|&l| {
+                            let ray = Ray::new(lane(&rays.origin, l), lane(&rays.dir, l));
+                            shape
+                                .intersect_prepared(&PreparedRay::new(&ray), t_max[l])
+                                .is_some()
+                        })
+                        .fold(0, |m, l| m | 1 << l),
+                };
+                if hit == 0 {
+                    continue;
+                }
+                if !scene.has_transmissive {
+                    if !surface.contains(&p) {
+                        blocked |= hit;
+                        open &= !hit;
+                    }
+                    continue;
+                }
+                for (l, count) in passed.iter_mut().enumerate() {
+                    *count += (hit >> l) & 1;
+                }
+                if surface.contains(&p) {
+                    continue;
+                }
+                let material = &scene.materials[prim.material as usize];
+                if !material.is_transmissive() {
+                    blocked |= hit;
+                    open &= !hit;
+                    continue;
+                }
+                crosses |= hit;
+                if material.kt != 1.0 {
+                    unclear |= hit;
+                }
+            }
+            // Rays through transmissive surfaces that the shortcut of `transmittance` does not
+            // settle walk their crossings one at a time, as there.
+            for (l, a) in answer.iter_mut().enumerate() {
+                let clear = unclear & (1 << l) == 0 && 2 * passed[l] <= MAX_SHADOW_CROSSINGS;
+                if open & (1 << l) != 0 && crosses & (1 << l) != 0 && !clear {
+                    *a = self.walk_crossings(spawn, lane(&target, l), surface);
+                }
+            }
+        }
+        for (l, a) in answer.iter_mut().enumerate() {
+            if blocked & (1 << l) != 0 {
+                *a = 0.0;
+            }
+        }
+        answer
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::accel::{Accel, AccelKind};
+    use crate::math::Vec2;
+    use crate::sampling::SampleKey;
+    use crate::scene::{load_str, LoadOptions};
+
+    /// A quad light of `samples` over a floor, with occluders of every kind a beam may hold:
+    /// opaque, mirror and glass spheres (`kt` 1 and below), a mesh box, a sphere under the
+    /// light's plane and a wall through it, so that shadow rays leave from both sides.
+    fn scene(samples: u32, method: &str) -> String {
+        let m = |extra: &str| {
+            format!(
+                r#"{{"kd": 0.8, "ks": 0.4, "specularexponent": 30, "diffusecolor": [0.8, 0.6, 0.4] {extra}}}"#
+            )
+        };
+        format!(
+            r#"{{
+  "nbounces": 3,
+  "camera": {{"type": "pinhole", "width": 40, "height": 30, "fov": 50,
+              "position": [0, 3, 7], "lookat": [0, -0.4, -1], "up": [0, 1, 0]}},
+  "scene": {{
+    "backgroundcolor": [0.1, 0.1, 0.1],
+    "lightsources": [
+      {{"type": "arealight", "v0": [-1, 3, -1], "v1": [1, 3, -1], "v2": [1, 3, 1], "v3": [-1, 3, 1],
+        "samples": {samples}, "method": "{method}", "is": [60, 60, 60], "id": [60, 60, 60]}}
+    ],
+    "shapes": [
+      {{"type": "plane", "v0": [-5, 0, 5], "v1": [5, 0, 5], "v2": [5, 0, -5], "v3": [-5, 0, -5],
+        "material": {m0}}},
+      {{"type": "plane", "v0": [2, -1, -3], "v1": [2, 4, -3], "v2": [2, 4, 3], "v3": [2, -1, 3],
+        "material": {m0}}},
+      {{"type": "sphere", "center": [-1.5, 0.6, 0], "radius": 0.6, "material": {m0}}},
+      {{"type": "sphere", "center": [0, 0.7, 0.5], "radius": 0.5,
+        "material": {glass}}},
+      {{"type": "sphere", "center": [0.8, 1.2, -0.5], "radius": 0.4,
+        "material": {clear}}},
+      {{"type": "sphere", "center": [-0.5, 1.8, -0.8], "radius": 0.3,
+        "material": {mirror}}},
+      {{"type": "sphere", "center": [0.3, 3.2, 0.2], "radius": 0.3, "material": {m0}}},
+      {{"type": "trimesh",
+        "vertices": [[0.6, 0, 0.8], [1.2, 0, 0.8], [1.2, 0, 1.4], [0.6, 0, 1.4],
+                     [0.6, 0.8, 0.8], [1.2, 0.8, 0.8], [1.2, 0.8, 1.4], [0.6, 0.8, 1.4]],
+        "faces": [[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [1, 5, 6, 2], [2, 6, 7, 3], [3, 7, 4, 0]],
+        "material": {m0}}}
+    ]
+  }}
+}}"#,
+            m0 = m(""),
+            glass = m(r#", "isrefractive": true, "refractiveindex": 1.5, "kt": 0.7"#),
+            clear = m(r#", "isrefractive": true, "refractiveindex": 1.0, "kt": 1.0"#),
+            mirror = m(r#", "isreflective": true, "reflectivity": 0.8"#),
+        )
+    }
+
+    /// Every pixel's radiance with the lanes and with the one-sample loop, bit for bit.
+    fn lanes_equal_the_loop(text: &str, accel: AccelKind) -> u64 {
+        let scene = load_str(text, Path::new("lanes.json"), &LoadOptions::default()).unwrap();
+        let accel = Accel::build(&scene.primitives, accel, 4);
+        let mut lanes = Whitted::new(&scene, &accel, 8);
+        let mut one = Whitted::new(&scene, &accel, 8);
+        one.lanes = false;
+        let (w, h) = (scene.camera.width, scene.camera.height);
+        for y in 0..h {
+            for x in 0..w {
+                let key = SampleKey::new(x, y, 0, 1, 7);
+                let ray = scene
+                    .camera
+                    .generate_ray(x, y, Vec2::splat(0.5), Vec2::splat(0.5));
+                let a = lanes.trace_camera(&ray, &key);
+                let b = one.trace_camera(&ray, &key);
+                assert_eq!(
+                    a.to_array().map(f32::to_bits),
+                    b.to_array().map(f32::to_bits),
+                    "pixel ({x}, {y}): lanes {a}, one at a time {b}"
+                );
+            }
+        }
+        assert_eq!(lanes.counts.shadow, one.counts.shadow);
+        lanes.counts.shadow
+    }
+
+    #[test]
+    fn lanes_give_the_one_sample_loops_bits() {
+        for (samples, method) in [
+            (4, "jittered"),
+            (3, "random"),
+            (2, "sobol"),
+            (5, "jittered"),
+        ] {
+            for accel in [AccelKind::None, AccelKind::Sah4] {
+                let rays = lanes_equal_the_loop(&scene(samples, method), accel);
+                assert!(rays > 1000, "{rays} shadow rays");
+            }
+        }
+    }
+}
