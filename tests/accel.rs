@@ -567,3 +567,95 @@ fn beam_candidates_answer_every_shadow_ray_of_the_beam() {
     }
     assert!(!Accel::List.beam_candidates(&prims, &beam, 3, &mut candidates));
 }
+
+/// Shadow rays that leave from one origin, tested against only the candidates left once those
+/// the origin leaves behind are set aside (`reachable_from`), give the answer of testing every
+/// primitive: from points exactly on axis-aligned floors, walls and tiles (whose triangles
+/// are set aside though the origin lies in their plane), from just above them, and from
+/// anywhere; and primitives are set aside.
+#[test]
+fn reachable_candidates_answer_every_shadow_ray_from_their_origin() {
+    use raytracer::accel::aabb::Aabb;
+    use raytracer::accel::{reachable_from, Beam};
+    let mut prims = mixed_scene(200, 5);
+    // A floor of 8 × 8 cells at y = −4, a wall at x = 4.5, and tiles at other heights.
+    let cell = 1.0;
+    for i in 0..8 {
+        for j in 0..8 {
+            let (x, z) = (-4.0 + i as f32 * cell, -4.0 + j as f32 * cell);
+            let p = |dx: f32, dz: f32| Vec3::new(x + dx, -4.0, z + dz);
+            prims.push(tri(p(0.0, 0.0), p(cell, 0.0), p(cell, cell)));
+            prims.push(tri(p(0.0, 0.0), p(cell, cell), p(0.0, cell)));
+        }
+    }
+    let w = |y: f32, z: f32| Vec3::new(4.5, y, z);
+    prims.push(tri(w(-4.0, -4.0), w(6.0, -4.0), w(6.0, 4.0)));
+    prims.push(tri(w(-4.0, -4.0), w(6.0, 4.0), w(-4.0, 4.0)));
+    let mut rng = Rng(0x51de);
+    let tiles: Vec<(Vec3, f32)> = (0..12)
+        .map(|_| {
+            (
+                rng.vec(Vec3::splat(-3.0), Vec3::splat(2.0)),
+                rng.range(0.3, 1.5),
+            )
+        })
+        .collect();
+    for &(c, s) in &tiles {
+        prims.push(tri(
+            c,
+            c + Vec3::new(s, 0.0, 0.0),
+            c + Vec3::new(0.0, 0.0, s),
+        ));
+    }
+    let list = Accel::List;
+    let (mut rays, mut blocked, mut floor_beams, mut set_aside) = (0, 0, 0, 0);
+    let (mut candidates, mut reachable) = (Vec::new(), Vec::new());
+    for k in 0..600 {
+        let c = rng.vec(Vec3::new(-3.0, 3.0, -3.0), Vec3::new(3.0, 6.0, 3.0));
+        let half = Vec3::new(
+            rng.range(0.1, 1.5),
+            rng.range(0.0, 0.3),
+            rng.range(0.1, 1.5),
+        );
+        let light = Aabb::new(c - half, c + half);
+        let origin = match k % 4 {
+            // On the floor's plane, exactly, and just above it.
+            0 => Vec3::new(rng.range(-4.0, 4.0), -4.0, rng.range(-4.0, 4.0)),
+            1 => Vec3::new(rng.range(-4.0, 4.0), -3.999_999_5, rng.range(-4.0, 4.0)),
+            // On a tile's plane (inside the tile or beside it).
+            2 => {
+                let (t, s) = tiles[k / 4 % tiles.len()];
+                t + Vec3::new(rng.range(-0.5, 1.0) * s, 0.0, rng.range(-0.5, 1.0) * s)
+            }
+            _ => rng.vec(Vec3::splat(-4.0), Vec3::new(4.0, 2.0, 4.0)),
+        };
+        let Some(beam) = Beam::new(origin, &light, 1e-4) else {
+            continue;
+        };
+        assert!(list.beam_candidates(&prims, &beam, usize::MAX, &mut candidates));
+        reachable_from(&prims, &beam, &candidates, origin, &mut reachable);
+        if k % 4 == 0 {
+            floor_beams += 1;
+            set_aside += candidates.len() - reachable.len();
+        }
+        for _ in 0..30 {
+            let target = rng.vec(light.min, light.max);
+            let to = target - origin;
+            let dist = to.length();
+            let ray = Ray::new(origin, to / dist);
+            let t_max = dist * (1.0 - 1e-4);
+            let want = list.any(&prims, &ray, t_max, |_| true);
+            let got = list.any_of(&prims, &reachable, &ray, t_max, |_| true);
+            assert_eq!(got, want, "{ray:?} to {t_max}");
+            rays += 1;
+            blocked += want as usize;
+        }
+    }
+    assert!(blocked > rays / 20 && blocked < rays, "{blocked} of {rays}");
+    // The floor's triangles around an origin on the floor are among its beam's candidates
+    // (their bounding balls hold it), and are set aside: at least the two of its own cell.
+    assert!(
+        set_aside >= 2 * floor_beams,
+        "{set_aside} for {floor_beams} beams"
+    );
+}

@@ -120,6 +120,24 @@ impl Beam {
             || (origin.cmplt(b.min) & hi.cmple(origin)).any()
     }
 
+    /// Whether no ray of the beam that starts at `origin` can hit a triangle whose bounds are
+    /// `b`, where the triangle lies in a plane of constant coordinate (`b` is flat on some
+    /// axis) and `origin` lies in that plane or beyond it while the whole light lies strictly
+    /// beyond `origin`. Every such ray then moves strictly away from the plane (the difference
+    /// `target − origin` is positive), so it meets the plane at `t ≤ 0` exactly, and the
+    /// triangle test accepts only a `t` it can prove positive
+    /// ([`crate::geometry::Triangle::intersect`], the error bounds of pbrt-v4 §6.8.4). This is
+    /// what a point of an axis-aligned floor needs, whose origins lie on the floor's plane
+    /// when the hit point is exact: [`Beam::leaves_behind`] asks for them to lie strictly
+    /// beyond it.
+    #[inline]
+    pub fn leaves_plane_behind(&self, origin: Vec3, b: &Aabb) -> bool {
+        let (lo, hi) = (self.target.min - self.slack, self.target.max + self.slack);
+        let flat = b.min.cmpeq(b.max);
+        (flat & origin.cmpge(b.max) & lo.cmpgt(origin)).any()
+            || (flat & origin.cmple(b.min) & hi.cmplt(origin)).any()
+    }
+
     /// Whether some ray of the beam may meet the ball `(center, radius)`; `false` only where
     /// none can.
     #[inline]

@@ -29,6 +29,7 @@ pub use wide::{Bvh4, Bvh8};
 use crate::geometry::{Candidate, Primitive, Shape};
 use crate::math::Vec3;
 use crate::ray::{PreparedRay, Ray};
+use aabb::Aabb;
 
 /// Which accelerator to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -300,8 +301,9 @@ pub(crate) fn any_among(
 
 /// Of `candidates` (gathered for `beam`), those a ray of the beam leaving from `origin` may
 /// still hit, written to `out`: all but the bounded primitives it leaves behind
-/// ([`Beam::leaves_behind`]). Testing only these answers every such ray as testing all the
-/// candidates does.
+/// ([`Beam::leaves_behind`]) and the axis-aligned triangles it leaves behind
+/// ([`Beam::leaves_plane_behind`]). Testing only these answers every such ray as testing all
+/// the candidates does.
 pub fn reachable_from(
     prims: &[Primitive],
     beam: &Beam,
@@ -312,7 +314,15 @@ pub fn reachable_from(
     out.clear();
     out.extend(candidates.iter().copied().filter(|&p| {
         let shape = &prims[p as usize].shape;
-        !(shape.is_bounded() && beam.leaves_behind(origin, &shape.bounds()))
+        let behind = |b: &Aabb| beam.leaves_behind(origin, b);
+        !match shape {
+            Shape::Plane(_) => false,
+            Shape::Triangle(t) => {
+                let b = t.bounds();
+                behind(&b) || beam.leaves_plane_behind(origin, &b)
+            }
+            Shape::Sphere(_) | Shape::Cylinder(_) => behind(&shape.bounds()),
+        }
     }));
 }
 
