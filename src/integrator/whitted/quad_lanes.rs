@@ -6,16 +6,16 @@
 //! (the tests below hold the two to each other pixel by pixel on a scene with every kind of
 //! blocker, and `tests/golden.rs` holds the pictures).
 //!
-//! What lanes do not pay for stays one lane at a time: the sample points' hashes, the light's
-//! fall-off, the highlight's power, shapes other than spheres, and the rare shadow ray that must
-//! walk its crossings through glass of `kt < 1`.
+//! What lanes do not pay for stays one lane at a time: the sample points' hashes (64-bit
+//! multiplications), shapes other than spheres, and the rare shadow ray that must walk its
+//! crossings through glass of `kt < 1`.
 
 use glam::Vec4;
 
 use super::Whitted;
 use crate::accel::kernels::Rays4;
 use crate::geometry::Shape;
-use crate::material::highlight;
+use crate::material::highlight4;
 use crate::math::{sqrt4, Vec3};
 use crate::ray::{PreparedRay, Ray, SpawnPoints};
 use crate::sampling::PointSet;
@@ -113,25 +113,26 @@ impl Whitted<'_> {
             // The terms, in lanes, of the samples that see the light.
             let l_dir = to_light.map(|c| c / sqrt4(d2));
             let n_dot_l = dot(&ns, &l_dir).max(Vec4::ZERO);
-            let cos_h = if s.has_highlight {
+            let spec = if s.has_highlight {
                 let h = [0, 1, 2].map(|a| l_dir[a] + v[a]);
                 let rcp = Vec4::ONE / sqrt4(dot(&h, &h));
                 let ok = rcp.abs().cmplt(Vec4::INFINITY) & rcp.cmpgt(Vec4::ZERO);
                 let h = h.map(|c| Vec4::select(ok, c * rcp, Vec4::ZERO));
-                dot(&ns, &h).max(Vec4::ZERO)
+                highlight4(dot(&ns, &h).max(Vec4::ZERO), s.exponent)
             } else {
                 Vec4::ZERO
             };
+            // `sample.weight` is 1 for a quad.
+            let e =
+                Vec4::splat(share * 1.0) * intensity.falloff4(d2) * Vec4::from_array(visibility);
+            let (fd, fs) = (n_dot_l * e, spec * e);
             for l in 0..lanes as usize {
                 if live & (1 << l) == 0 || visibility[l] == 0.0 {
                     continue;
                 }
-                // `sample.weight` is 1 for a quad.
-                let e = share * 1.0 * intensity.falloff(d2[l]) * visibility[l];
-                *color += diffuse * (n_dot_l[l] * e);
+                *color += diffuse * fd[l];
                 if s.has_highlight {
-                    let spec = highlight(cos_h[l], s.exponent);
-                    *color += specular * (spec * e);
+                    *color += specular * fs[l];
                 }
             }
         }
