@@ -34,6 +34,17 @@ pub(super) trait Tree {
     /// their empty boxes and empty leaves).
     fn children(&self, n: NodeRef) -> impl Iterator<Item = (Aabb, NodeRef)> + '_;
 
+    /// Calls `visit` on each child of the interior node `n` whose box `beam` may meet
+    /// ([`Beam::may_hit_box`]), in slot order.
+    #[inline]
+    fn beam_children(&self, n: NodeRef, beam: &Beam, mut visit: impl FnMut(NodeRef)) {
+        for (b, child) in self.children(n) {
+            if beam.may_hit_box(&b) {
+                visit(child);
+            }
+        }
+    }
+
     /// The closest hit below the interior node `root`, whose box the ray meets, starting from
     /// `best`.
     fn closest_below<const NX: bool, const NY: bool, const NZ: bool>(
@@ -165,11 +176,7 @@ pub(super) fn beam_candidates(
             }
             continue;
         }
-        for (b, child) in tree.children(n) {
-            if beam.may_hit_box(&b) {
-                stack.push(child);
-            }
-        }
+        tree.beam_children(n, beam, |child| stack.push(child));
     }
     true
 }

@@ -320,6 +320,21 @@ impl<const C: usize> Tree for WideBvh<C> {
         self.nodes[n.index as usize].boxes()
     }
 
+    /// The children's boxes four at a time ([`Beam::may_hit_boxes4`]).
+    #[inline]
+    fn beam_children(&self, n: NodeRef, beam: &Beam, mut visit: impl FnMut(NodeRef)) {
+        let node = &self.nodes[n.index as usize];
+        for g in 0..C {
+            let lo = [0, 1, 2].map(|a| Vec4::from_array(node.lo[a][g]));
+            let hi = [0, 1, 2].map(|a| Vec4::from_array(node.hi[a][g]));
+            let mut mask = beam.may_hit_boxes4(lo, hi);
+            while mask != 0 {
+                visit(node.child(4 * g + mask.trailing_zeros() as usize));
+                mask &= mask - 1;
+            }
+        }
+    }
+
     /// Visits the nearest hit child first and skips subtrees that start beyond the best hit so
     /// far.
     fn closest_below<const NX: bool, const NY: bool, const NZ: bool>(
