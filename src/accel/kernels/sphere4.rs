@@ -62,7 +62,7 @@ impl Sphere4 {
             return Hits4::NONE;
         }
         let c = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) - r2;
-        let q = b + Vec4::from_array(disc.to_array().map(f32::sqrt)).copysign(b);
+        let q = b + crate::math::sqrt4(disc).copysign(b);
         let q_zero = q.cmpeq(zero);
         let t0 = Vec4::select(q_zero, zero, c / q);
         let t1 = Vec4::select(q_zero, zero, q / a);
