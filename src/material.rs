@@ -77,19 +77,8 @@ const MAX_WHOLE_EXPONENT: f32 = 4096.0;
 /// step (1/1020) for highlights up to 1 (the tests in this module check the bound).
 #[inline]
 pub fn highlight(cos: f32, exponent: f32) -> f32 {
-    if (0.0..=MAX_WHOLE_EXPONENT).contains(&exponent) && exponent.fract() == 0.0 {
-        // Square-and-multiply, low bit first.
-        let (mut base, mut n, mut result) = (cos, exponent as u32, 1.0f32);
-        while n > 0 {
-            if n & 1 == 1 {
-                result *= base;
-            }
-            n >>= 1;
-            if n > 0 {
-                base *= base;
-            }
-        }
-        result
+    if is_whole_exponent(exponent) {
+        whole_power(cos, exponent as u32, 1.0)
     } else {
         cos.powf(exponent)
     }
@@ -99,21 +88,34 @@ pub fn highlight(cos: f32, exponent: f32) -> f32 {
 /// the same squarings and multiplications, in the same order (or `powf` lane by lane).
 #[inline(always)]
 pub fn highlight4(cos: glam::Vec4, exponent: f32) -> glam::Vec4 {
-    if (0.0..=MAX_WHOLE_EXPONENT).contains(&exponent) && exponent.fract() == 0.0 {
-        let (mut base, mut n, mut result) = (cos, exponent as u32, glam::Vec4::ONE);
-        while n > 0 {
-            if n & 1 == 1 {
-                result *= base;
-            }
-            n >>= 1;
-            if n > 0 {
-                base *= base;
-            }
-        }
-        result
+    if is_whole_exponent(exponent) {
+        whole_power(cos, exponent as u32, glam::Vec4::ONE)
     } else {
         glam::Vec4::from_array(cos.to_array().map(|c| c.powf(exponent)))
     }
+}
+
+/// Whether [`highlight`] raises to `exponent` by square-and-multiply.
+#[inline(always)]
+fn is_whole_exponent(exponent: f32) -> bool {
+    (0.0..=MAX_WHOLE_EXPONENT).contains(&exponent) && exponent.fract() == 0.0
+}
+
+/// `base^n` by square-and-multiply, low bit first, from `one`: one sequence of products for a
+/// number or for lanes of numbers.
+#[inline(always)]
+fn whole_power<T: Copy + std::ops::MulAssign>(mut base: T, mut n: u32, one: T) -> T {
+    let mut result = one;
+    while n > 0 {
+        if n & 1 == 1 {
+            result *= base;
+        }
+        n >>= 1;
+        if n > 0 {
+            base *= base;
+        }
+    }
+    result
 }
 
 /// The Blinn-Phong exponent of a microfacet roughness `α` (a Beckmann slope deviation), `2/α² − 2`

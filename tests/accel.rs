@@ -500,6 +500,24 @@ fn nan_and_zero_directions_hit_nothing() {
     }
 }
 
+/// A light: a flat quad or a small box, somewhere above the middle of the scene.
+fn light_box(rng: &mut Rng) -> raytracer::accel::aabb::Aabb {
+    let c = rng.vec(Vec3::new(-3.0, 3.0, -3.0), Vec3::new(3.0, 6.0, 3.0));
+    let half = Vec3::new(
+        rng.range(0.1, 1.5),
+        rng.range(0.0, 0.3),
+        rng.range(0.1, 1.5),
+    );
+    raytracer::accel::aabb::Aabb::new(c - half, c + half)
+}
+
+/// The shadow ray from `origin` to `target`, and its bound: just short of the target.
+fn shadow_ray(origin: Vec3, target: Vec3) -> (Ray, f32) {
+    let to = target - origin;
+    let dist = to.length();
+    (Ray::new(origin, to / dist), dist * (1.0 - 1e-4))
+}
+
 /// Shadow rays from one point to the points of a light box, tested against only the candidates
 /// of their beam, give the answer of testing every primitive, in every accelerator; and the
 /// beam does set primitives aside.
@@ -515,14 +533,7 @@ fn beam_candidates_answer_every_shadow_ray_of_the_beam() {
     let (mut rays, mut blocked, mut kept, mut beams) = (0usize, 0usize, 0usize, 0usize);
     let mut candidates = Vec::new();
     for _ in 0..150 {
-        // A light: a flat quad or a small box, somewhere above the middle of the scene.
-        let c = rng.vec(Vec3::new(-3.0, 3.0, -3.0), Vec3::new(3.0, 6.0, 3.0));
-        let half = Vec3::new(
-            rng.range(0.1, 1.5),
-            rng.range(0.0, 0.3),
-            rng.range(0.1, 1.5),
-        );
-        let light = Aabb::new(c - half, c + half);
+        let light = light_box(&mut rng);
         let apex = rng.vec(Vec3::splat(-4.0), Vec3::new(4.0, 2.0, 4.0));
         // Origins within `offset` of the apex, as spawned shadow rays are.
         let offset = 1e-4;
@@ -538,11 +549,7 @@ fn beam_candidates_answer_every_shadow_ray_of_the_beam() {
             kept += candidates.len();
             for _ in 0..40 {
                 let origin = apex + rng.dir() * offset * rng.next();
-                let target = rng.vec(light.min, light.max);
-                let to = target - origin;
-                let dist = to.length();
-                let ray = Ray::new(origin, to / dist);
-                let t_max = dist * (1.0 - 1e-4);
+                let (ray, t_max) = shadow_ray(origin, rng.vec(light.min, light.max));
                 let want = list.any(&prims, &ray, t_max, |_| true);
                 let got = accel.any_of(&prims, &candidates, &ray, t_max, |_| true);
                 assert_eq!(got, want, "{name}: {ray:?} to {t_max}");
@@ -575,7 +582,6 @@ fn beam_candidates_answer_every_shadow_ray_of_the_beam() {
 /// anywhere; and primitives are set aside.
 #[test]
 fn reachable_candidates_answer_every_shadow_ray_from_their_origin() {
-    use raytracer::accel::aabb::Aabb;
     use raytracer::accel::{reachable_from, Beam};
     let mut prims = mixed_scene(200, 5);
     // A floor of 8 × 8 cells at y = −4, a wall at x = 4.5, and tiles at other heights.
@@ -611,13 +617,7 @@ fn reachable_candidates_answer_every_shadow_ray_from_their_origin() {
     let (mut rays, mut blocked, mut floor_beams, mut set_aside) = (0, 0, 0, 0);
     let (mut candidates, mut reachable) = (Vec::new(), Vec::new());
     for k in 0..600 {
-        let c = rng.vec(Vec3::new(-3.0, 3.0, -3.0), Vec3::new(3.0, 6.0, 3.0));
-        let half = Vec3::new(
-            rng.range(0.1, 1.5),
-            rng.range(0.0, 0.3),
-            rng.range(0.1, 1.5),
-        );
-        let light = Aabb::new(c - half, c + half);
+        let light = light_box(&mut rng);
         let origin = match k % 4 {
             // On the floor's plane, exactly, and just above it.
             0 => Vec3::new(rng.range(-4.0, 4.0), -4.0, rng.range(-4.0, 4.0)),
@@ -639,11 +639,7 @@ fn reachable_candidates_answer_every_shadow_ray_from_their_origin() {
             set_aside += candidates.len() - reachable.len();
         }
         for _ in 0..30 {
-            let target = rng.vec(light.min, light.max);
-            let to = target - origin;
-            let dist = to.length();
-            let ray = Ray::new(origin, to / dist);
-            let t_max = dist * (1.0 - 1e-4);
+            let (ray, t_max) = shadow_ray(origin, rng.vec(light.min, light.max));
             let want = list.any(&prims, &ray, t_max, |_| true);
             let got = list.any_of(&prims, &reachable, &ray, t_max, |_| true);
             assert_eq!(got, want, "{ray:?} to {t_max}");

@@ -101,6 +101,22 @@ impl Hits4 {
     };
 }
 
+/// The ray parameter [`crate::geometry::Sphere::intersect`] takes, lane by lane: of the roots
+/// `c/q` and `q/a` of the quadratic (`q = b + sign(b)·√disc`, both 0 where `q` is), the nearer
+/// one if it is positive, else the farther. The caller keeps lanes with `disc ≥ 0` and a positive
+/// result.
+#[inline(always)]
+pub(super) fn sphere_root(a: Vec4, b: Vec4, c: Vec4, disc: Vec4) -> Vec4 {
+    let zero = Vec4::ZERO;
+    let q = b + crate::math::sqrt4(disc).copysign(b);
+    let q_zero = q.cmpeq(zero);
+    let t0 = Vec4::select(q_zero, zero, c / q);
+    let t1 = Vec4::select(q_zero, zero, q / a);
+    let swap = t0.cmpgt(t1);
+    let (t0, t1) = (Vec4::select(swap, t1, t0), Vec4::select(swap, t0, t1));
+    Vec4::select(t0.cmpgt(zero), t0, t1)
+}
+
 /// The lanes of `b` as bits.
 #[inline(always)]
 pub(super) fn mask(b: BVec4A) -> u32 {

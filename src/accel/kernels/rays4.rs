@@ -7,7 +7,7 @@
 
 use glam::{BVec4A, Vec4};
 
-use super::ray4::mask;
+use super::ray4::{mask, sphere_root};
 use crate::accel::aabb::SLAB_WIDEN;
 use crate::geometry::Sphere;
 
@@ -61,13 +61,7 @@ impl Rays4 {
             return 0;
         }
         let c = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) - r2;
-        let q = b + crate::math::sqrt4(disc).copysign(b);
-        let q_zero = q.cmpeq(zero);
-        let t0 = Vec4::select(q_zero, zero, c / q);
-        let t1 = Vec4::select(q_zero, zero, q / a);
-        let swap = t0.cmpgt(t1);
-        let (t0, t1) = (Vec4::select(swap, t1, t0), Vec4::select(swap, t0, t1));
-        let t = Vec4::select(t0.cmpgt(zero), t0, t1);
+        let t = sphere_root(a, b, c, disc);
         live &= mask(t.cmpgt(zero) & t.cmplt(t_max));
         if live == 0 {
             return 0;
