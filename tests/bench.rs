@@ -6,7 +6,6 @@ mod common;
 use std::process::Command;
 
 use common::repo;
-use raytracer::accel::AUTO_MIN_PRIMITIVES;
 
 const ACCELS: [&str; 7] = ["auto", "none", "flat", "median", "sah", "sah4", "sah8"];
 
@@ -62,16 +61,14 @@ fn quick_table_has_every_scene_light_and_accelerator() {
             }
         }
     }
-    // `none` builds nothing; `flat`, and `auto` on tiny scenes, build one leaf.
+    // `none` builds nothing, `flat` one leaf, and `auto` the four-wide tree, on every scene.
     for r in &rows {
-        let tiny = r[col("prims")].parse::<usize>().unwrap() < AUTO_MIN_PRIMITIVES;
         let accel = r[col("accel")];
         assert_eq!(r[col("built")] == "list", accel == "none", "{r:?}");
-        assert_eq!(
-            r[col("built")] == "flat",
-            accel == "flat" || (accel == "auto" && tiny),
-            "{r:?}"
-        );
+        assert_eq!(r[col("built")] == "flat", accel == "flat", "{r:?}");
+        if accel == "auto" {
+            assert_eq!(r[col("built")], "sah4", "{r:?}");
+        }
     }
 }
 
@@ -185,7 +182,72 @@ fn bench_usage_errors_exit_2_and_render_usage_is_unchanged() {
     assert_eq!(run(&["bench", "--runs", "0"]).status.code(), Some(2));
     assert_eq!(run(&["bench", "--huge"]).status.code(), Some(2));
     assert_eq!(run(&["bench", "--bogus"]).status.code(), Some(2));
+    assert_eq!(run(&["bench", "--kinds"]).status.code(), Some(2));
+    assert_eq!(
+        run(&["bench", "--kinds", "scenes/glass.json", "--rays"])
+            .status
+            .code(),
+        Some(2)
+    );
     assert_eq!(run(&["bench", "--help"]).status.code(), Some(0));
     // The render command line still wants SCENE OUT.
     assert_eq!(run(&["scenes/example.json"]).status.code(), Some(2));
+}
+
+/// `bench --kinds`: a row per kind of ray, with the counts the scene implies: a camera ray per
+/// pixel, reflection and refraction rays only where hits spawn them, shadow rays towards the
+/// lights, and hits never above rays. A scene that cannot be read is an error naming it.
+#[test]
+fn kinds_report_every_kind_of_ray_of_a_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("kinds.csv");
+    let out = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+        .args([
+            "bench",
+            "--kinds",
+            "scenes/glass.json",
+            "--runs",
+            "1",
+            "--threads",
+            "1",
+            "--csv",
+        ])
+        .arg(&csv)
+        .current_dir(repo())
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    let kinds: Vec<&str> = rows.iter().map(|r| r[col("kind")]).collect();
+    assert_eq!(
+        kinds,
+        ["camera", "reflection", "refraction", "shadow"],
+        "{csv}"
+    );
+    let n = |r: &Vec<&str>, c: &str| r[col(c)].parse::<u64>().unwrap();
+    // glass.json is 320×240 with glass and mirror spheres and a light.
+    assert_eq!(n(&rows[0], "rays"), 320 * 240);
+    for r in &rows {
+        assert!(n(r, "hits") <= n(r, "rays"), "{r:?}");
+        assert!(n(r, "rays") > 0, "{r:?}");
+        assert!(r[col("ns_per_ray")].parse::<f64>().unwrap() > 0.0, "{r:?}");
+    }
+    // A reflection ray at every glass or mirror hit, a refraction ray at most at each of those.
+    assert!(n(&rows[1], "rays") <= n(&rows[0], "hits"));
+    assert!(n(&rows[2], "rays") <= n(&rows[1], "rays"));
+    let missing = Command::new(env!("CARGO_BIN_EXE_raytracer"))
+        .args(["bench", "--kinds", "no-such-scene.json"])
+        .current_dir(repo())
+        .output()
+        .unwrap();
+    assert_ne!(missing.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&missing.stderr).contains("no-such-scene.json"));
 }

@@ -34,8 +34,11 @@ use aabb::Aabb;
 /// Which accelerator to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum AccelKind {
-    /// The four-wide SAH BVH, except for scenes so small that testing every primitive in SIMD
-    /// blocks is as fast (fewer than [`AUTO_MIN_PRIMITIVES`]): then `flat`.
+    /// The four-wide SAH BVH, whatever the scene's size: the SAH makes a tiny scene's root one
+    /// leaf where splitting does not pay, and measured on every bundled scene of fewer than 16
+    /// primitives (where `auto` used to build `flat`) the tree's queries took 0.57–0.92× the
+    /// flat leaf's time and its renders 0.4–14% fewer instructions (`docs/performance.md`, "The
+    /// `auto` choice").
     #[default]
     Auto,
     /// Test every primitive, one by one (the reference every other kind agrees with).
@@ -79,10 +82,9 @@ impl AccelKind {
 }
 
 impl AccelKind {
-    /// What this kind builds for `primitives` primitives: `auto` resolved to `flat` or `sah`.
-    pub fn resolved(self, primitives: usize) -> AccelKind {
+    /// What this kind builds: `auto` resolved to `sah4`.
+    pub fn resolved(self) -> AccelKind {
         match self {
-            AccelKind::Auto if primitives < AUTO_MIN_PRIMITIVES => AccelKind::Flat,
             AccelKind::Auto => AccelKind::Sah4,
             kind => kind,
         }
@@ -114,17 +116,6 @@ impl std::str::FromStr for AccelKind {
     }
 }
 
-/// Below this many primitives `auto` builds `flat` (one leaf, every primitive tested in SIMD
-/// blocks): a BVH's node tests cost more than they save.
-///
-/// Measured with `raytracer bench --crossover --runs 41`, which times the ray queries (camera rays
-/// at 320×240, shadow rays, random secondary rays; one thread, medians) with `none`, `flat` and
-/// `sah` on scenes of 1 to 64 random spheres and triangles, scattered in space or in front of a
-/// quad filling the view (so that every ray hits). `flat` was at or below `none` from 5 primitives
-/// on and about as fast as the tree up to 16; the tree won from 16 with the quad and from 32
-/// without (`docs/performance.md`, "The `auto` threshold").
-pub const AUTO_MIN_PRIMITIVES: usize = 16;
-
 /// The built accelerator.
 #[derive(Debug, Clone)]
 pub enum Accel {
@@ -142,7 +133,7 @@ impl Accel {
         if prims.len() >= u32::MAX as usize {
             return Accel::List;
         }
-        match kind.resolved(prims.len()) {
+        match kind.resolved() {
             AccelKind::None => Accel::List,
             AccelKind::Flat => Accel::Bvh(Bvh::build_flat(prims)),
             AccelKind::Median => Accel::Bvh(Bvh::build_median(prims, leaf_size)),

@@ -10,10 +10,13 @@ use std::time::Duration;
 
 use clap::Parser;
 
+use crate::accel::{Accel, AccelKind};
 use crate::bench::{
-    crossover, default_scenes_dir, format_csv, format_table, row_fields, sphere_grid_triangles,
-    table1, throughput, TableOptions, Throughput, TABLE_HEADER,
+    crossover, default_scenes_dir, format_csv, format_table, kinds, row_fields,
+    sphere_grid_triangles, table1, throughput, TableOptions, Throughput, TABLE_HEADER,
 };
+
+use crate::scene::{load, LoadOptions};
 
 use super::interrupt::Interrupt;
 use super::{exit_code, values};
@@ -54,6 +57,13 @@ struct BenchCli {
     /// Measure where a BVH starts to pay: none against sah on scenes of 1 to 64 primitives.
     #[arg(long)]
     crossover: bool,
+    /// A scene's ray queries by kind (camera, reflection, refraction, shadow) on one thread, with
+    /// the accelerator its render builds: rays, hits, Mrays/s and ns per ray.
+    #[arg(long, value_name = "SCENE", num_args = 1.., conflicts_with_all = ["crossover", "rays"])]
+    kinds: Vec<PathBuf>,
+    /// With --kinds: the accelerator (default: what a render builds, `auto`).
+    #[arg(long, requires = "kinds", default_value_t = AccelKind::Auto)]
+    accel: AccelKind,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4096))]
     threads: Option<u32>,
@@ -105,9 +115,10 @@ fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
     let csv_out = match &cli.csv {
         Some(path) => {
             let scenes = cli.scenes.clone().unwrap_or_else(default_scenes_dir);
-            let inputs: Vec<PathBuf> = std::fs::read_dir(&scenes)
+            let mut inputs: Vec<PathBuf> = std::fs::read_dir(&scenes)
                 .map(|entries| entries.filter_map(|e| e.ok().map(|e| e.path())).collect())
                 .unwrap_or_default();
+            inputs.extend(cli.kinds.iter().cloned());
             Outputs::from_inputs(inputs.iter().map(PathBuf::as_path))
                 .claim(path)
                 .map_err(|e| e.to_string())?;
@@ -156,6 +167,45 @@ fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
                     ratio(flat, none),
                     ratio(sah, flat),
                     ratio(sah4, flat),
+                ]);
+            }
+        }
+        (header, rows)
+    } else if !cli.kinds.is_empty() {
+        outln!(
+            "ray queries by kind: from every pixel centre, the camera ray and the rays its hit \
+             spawns (up to {} shadow rays a light); one thread, medians of {runs}",
+            kinds::SHADOW_SAMPLES_PER_LIGHT
+        );
+        let header = vec![
+            "scene",
+            "accel",
+            "kind",
+            "rays",
+            "hits",
+            "ms",
+            "mrays_s",
+            "ns_per_ray",
+        ];
+        let mut rows = Vec::new();
+        for path in &cli.kinds {
+            let scene = load(path, &LoadOptions::default()).map_err(|e| e.to_string())?;
+            let kind = cli.accel.resolved();
+            let accel = Accel::build(&scene.primitives, kind, leaf_size);
+            let rays = kinds::kind_rays(&scene, &accel);
+            for t in kinds::time_kinds(&scene, &accel, &rays, runs) {
+                let opt = |v: Option<f64>, digits: usize| {
+                    v.map_or_else(|| "-".to_string(), |v| format!("{v:.digits$}"))
+                };
+                rows.push(vec![
+                    shown(path).to_string(),
+                    kind.name().to_string(),
+                    t.kind.to_string(),
+                    t.rays.to_string(),
+                    t.hits.to_string(),
+                    format!("{:.2}", ms(t.time)),
+                    opt(t.mrays(), 2),
+                    opt(t.ns_per_ray(), 1),
                 ]);
             }
         }

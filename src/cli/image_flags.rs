@@ -67,7 +67,7 @@ pub(crate) struct ImageFlags {
     /// a radiance scale of its own.
     #[arg(long, default_value_t = 1.0, value_parser = values::non_negative_f32)]
     pub exposure: f32,
-    /// Accelerator: auto (four-wide SAH BVH, or flat for tiny scenes), none (every primitive, one by one), flat (every primitive in one SIMD-tested leaf), median, sah (binary), sah4 (four-wide), sah8 (eight-wide).
+    /// Accelerator: auto (the four-wide SAH BVH), none (every primitive, one by one), flat (every primitive in one SIMD-tested leaf), median, sah (binary), sah4 (four-wide), sah8 (eight-wide).
     #[arg(long, default_value = "auto")]
     pub accel: AccelKind,
     /// Most primitives per BVH leaf.

@@ -9,6 +9,8 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
+pub mod kinds;
+
 use crate::accel::{Accel, AccelKind};
 use crate::camera::{Camera, Handedness};
 use crate::files::shown;
@@ -452,7 +454,7 @@ fn table_row(
     let (build, accel) = timed(options.runs, || {
         Accel::build(&scene.primitives, kind, options.leaf_size)
     });
-    let built = match (&accel, kind.resolved(scene.primitives.len())) {
+    let built = match (&accel, kind.resolved()) {
         (Accel::Bvh(_), AccelKind::Median) => "median",
         (Accel::Bvh(_), AccelKind::Flat) => "flat",
         (Accel::Bvh(_), _) => "sah",
@@ -1001,7 +1003,7 @@ pub fn random_scene(n: usize, width: u32, height: u32, backdrop: bool) -> Scene 
 }
 
 /// Query times of `random_scene(n, backdrop)` with `none`, `flat`, `sah` and `sah4` (the tree
-/// `auto` builds from [`crate::accel::AUTO_MIN_PRIMITIVES`] on), for each `n`: the
+/// `auto` builds), for each `n`: the
 /// three ray sets of [`ray_sets`] (camera rays at 320×240, shadow rays to the light, random
 /// secondary rays) traced on this thread, medians of `runs`. Timing the queries alone, not whole
 /// renders, keeps shading and ray generation, which the accelerators share, out of the
