@@ -425,7 +425,7 @@ impl<'a> Whitted<'a> {
             return color;
         }
         let branch = |dir: Vec3, id: u64, factor: f32| Branch {
-            ray: hit.spawn(dir),
+            ray: spawn.ray(dir),
             depth: depth + 1,
             key: key.stream(0x1000 + id),
             weight: weight * factor,
