@@ -124,6 +124,52 @@ struct Branch {
     factor: f32,
 }
 
+/// What a shadow ray's any-hit query notes of the surfaces it hits, in a scene with transmissive
+/// ones: how many it passes (its own light's and transmissive ones), whether any is
+/// transmissive, and whether every one of those lets everything through (`kt = 1`).
+#[derive(Debug, Clone, Copy)]
+struct Passage {
+    passed: u32,
+    crosses: bool,
+    clear: bool,
+}
+
+impl Default for Passage {
+    fn default() -> Passage {
+        Passage {
+            passed: 0,
+            crosses: false,
+            clear: true,
+        }
+    }
+}
+
+impl Passage {
+    /// Notes a hit on primitive `p`: whether it stops the ray, as an opaque surface that is not
+    /// part of the light (`surface`) does.
+    #[inline]
+    fn blocked_by(&mut self, scene: &Scene, surface: &Range<u32>, p: u32) -> bool {
+        self.passed += 1;
+        if surface.contains(&p) {
+            return false;
+        }
+        let material = &scene.materials[scene.primitives[p as usize].material as usize];
+        let transmissive = material.is_transmissive();
+        self.crosses |= transmissive;
+        self.clear &= material.kt == 1.0;
+        !transmissive
+    }
+
+    /// Whether a ray that nothing blocked sees all of the light without walking its crossings:
+    /// with no transmissive surface on the way, or only ones of kt = 1 that the walk could not
+    /// cross more than its limit of times (a primitive is crossed at most twice by a line), the
+    /// product is 1.
+    #[inline]
+    fn settled(&self) -> bool {
+        !self.crosses || (self.clear && 2 * self.passed <= MAX_SHADOW_CROSSINGS)
+    }
+}
+
 /// A shading point whose reflection and refraction rays are not all traced yet.
 #[derive(Debug, Clone, Copy)]
 struct Open {
@@ -354,24 +400,9 @@ impl<'a> Whitted<'a> {
                     }
                     [reachable[0].as_slice(), reachable[1].as_slice()]
                 });
-            if let (
-                Light::Quad {
-                    origin,
-                    edge_u,
-                    edge_v,
-                    ..
-                },
-                None,
-                true,
-            ) = (light, known, count > 1 && self.lanes)
-            {
-                let quad = Quad {
-                    origin: *origin,
-                    edge_u: *edge_u,
-                    edge_v: *edge_v,
-                };
+            if let (Some(quad), None, true) = (Quad::of(light), known, count > 1 && self.lanes) {
                 let done = self.quad_light_lanes(
-                    &mut color, &shading, &quad, &points, count, share, light, &surface, only,
+                    &mut color, &shading, &quad, &points, count, share, &surface, only,
                 );
                 if !done {
                     self.candidates = candidates;
@@ -538,27 +569,11 @@ impl<'a> Whitted<'a> {
             let blocked = any(&mut |p| !surface.contains(&p));
             return if blocked { 0.0 } else { 1.0 };
         }
-        // Primitives the ray passes (its own light's and transmissive ones), and whether every
-        // transmissive one lets everything through.
-        let (mut passed, mut crosses, mut clear) = (0u32, false, true);
-        let opaque = any(&mut |p| {
-            passed += 1;
-            if surface.contains(&p) {
-                return false;
-            }
-            let material = &scene.materials[prims[p as usize].material as usize];
-            let transmissive = material.is_transmissive();
-            crosses |= transmissive;
-            clear &= material.kt == 1.0;
-            !transmissive
-        });
-        if opaque {
+        let mut passage = Passage::default();
+        if any(&mut |p| passage.blocked_by(scene, surface, p)) {
             return 0.0;
         }
-        // With no transmissive surface on the way, or only ones of kt = 1 that the walk below
-        // could not cross more than its limit of times (a primitive is crossed at most twice by
-        // a line), the product is 1 without walking.
-        if !crosses || (clear && 2 * passed <= MAX_SHADOW_CROSSINGS) {
+        if passage.settled() {
             return 1.0;
         }
         self.walk_crossings(from, target, surface)

@@ -15,19 +15,42 @@ use glam::Vec4;
 use super::Whitted;
 use crate::accel::kernels::Rays4;
 use crate::geometry::Shape;
+use crate::light::{Intensity, Light};
 use crate::material::highlight4;
 use crate::math::{sqrt4, Vec3};
 use crate::ray::{PreparedRay, Ray, SpawnPoints};
 use crate::sampling::PointSet;
 
 use super::super::LIGHT_CLEARANCE;
-use super::{MAX_SHADOW_CROSSINGS, SHADOW_RAYS_PER_CANCEL_CHECK};
+use super::{Passage, SHADOW_RAYS_PER_CANCEL_CHECK};
 
 /// The quad light `origin + s·edge_u + t·edge_v`.
-pub(super) struct Quad {
-    pub origin: Vec3,
-    pub edge_u: Vec3,
-    pub edge_v: Vec3,
+pub(super) struct Quad<'l> {
+    origin: Vec3,
+    edge_u: Vec3,
+    edge_v: Vec3,
+    intensity: &'l Intensity,
+}
+
+impl Quad<'_> {
+    /// `light`, if it is a quad.
+    pub fn of(light: &Light) -> Option<Quad<'_>> {
+        match light {
+            Light::Quad {
+                origin,
+                edge_u,
+                edge_v,
+                intensity,
+                ..
+            } => Some(Quad {
+                origin: *origin,
+                edge_u: *edge_u,
+                edge_v: *edge_v,
+                intensity,
+            }),
+            _ => None,
+        }
+    }
 }
 
 /// What the light terms of one shading point share.
@@ -79,11 +102,10 @@ impl Whitted<'_> {
         points: &PointSet,
         count: u32,
         share: f32,
-        light: &crate::light::Light,
         surface: &std::ops::Range<u32>,
         reachable: Option<[&[u32]; 2]>,
     ) -> bool {
-        let intensity = light.intensity();
+        let intensity = quad.intensity;
         let diffuse = s.kd_base * intensity.diffuse;
         let specular = s.ks_specular * intensity.specular;
         let (origin, edge_u, edge_v) = (splat(quad.origin), splat(quad.edge_u), splat(quad.edge_v));
@@ -176,9 +198,9 @@ impl Whitted<'_> {
                 continue;
             }
             // What the any-hit query's filter notes on the way, per lane.
-            let mut passed = [0u32; 4];
-            let mut crosses = 0u32;
-            let mut unclear = 0u32;
+            let mut passage = [Passage::default(); 4];
+            // Each lane's ray, prepared for shapes the lanes do not test, when first needed.
+            let mut prepared: [Option<PreparedRay>; 4] = [None; 4];
             for &p in list.iter() {
                 if open == 0 {
                     break;
@@ -189,10 +211,13 @@ impl Whitted<'_> {
                     shape => (0..4)
                         .filter(|&l| open & (1 << l) != 0)
                         .filter(|&l| {
-                            let ray = Ray::new(lane(&rays.origin, l), lane(&rays.dir, l));
-                            shape
-                                .intersect_prepared(&PreparedRay::new(&ray), t_max[l])
-                                .is_some()
+                            let r = prepared[l].get_or_insert_with(|| {
+                                PreparedRay::new(&Ray::new(
+                                    lane(&rays.origin, l),
+                                    lane(&rays.dir, l),
+                                ))
+                            });
+                            shape.intersect_prepared(r, t_max[l]).is_some()
                         })
                         .fold(0, |m, l| m | 1 << l),
                 };
@@ -206,28 +231,17 @@ impl Whitted<'_> {
                     }
                     continue;
                 }
-                for (l, count) in passed.iter_mut().enumerate() {
-                    *count += (hit >> l) & 1;
-                }
-                if surface.contains(&p) {
-                    continue;
-                }
-                let material = &scene.materials[prim.material as usize];
-                if !material.is_transmissive() {
-                    blocked |= hit;
-                    open &= !hit;
-                    continue;
-                }
-                crosses |= hit;
-                if material.kt != 1.0 {
-                    unclear |= hit;
+                for (l, passage) in passage.iter_mut().enumerate() {
+                    if hit & (1 << l) != 0 && passage.blocked_by(scene, surface, p) {
+                        blocked |= 1 << l;
+                        open &= !(1 << l);
+                    }
                 }
             }
-            // Rays through transmissive surfaces that the shortcut of `transmittance` does not
-            // settle walk their crossings one at a time, as there.
+            // Rays through transmissive surfaces that `transmittance`'s shortcut does not settle
+            // walk their crossings one at a time, as there.
             for (l, a) in answer.iter_mut().enumerate() {
-                let clear = unclear & (1 << l) == 0 && 2 * passed[l] <= MAX_SHADOW_CROSSINGS;
-                if open & (1 << l) != 0 && crosses & (1 << l) != 0 && !clear {
+                if open & (1 << l) != 0 && !passage[l].settled() {
                     *a = self.walk_crossings(spawn, lane(&target, l), surface);
                 }
             }
