@@ -38,11 +38,9 @@ pub struct Beam {
     length: f32,
     /// Added to every bounding radius: the origin offset and the absolute slack.
     grow: f32,
-    /// The box the rays end in (the light's).
-    target: Aabb,
-    /// The absolute slack: how far beyond `target` a computed sample point may lie, with room
-    /// to spare.
-    slack: f32,
+    /// The box the rays end in (the light's), grown by the absolute slack: every computed
+    /// sample point of the light lies inside, with room to spare.
+    ends: Aabb,
 }
 
 impl Beam {
@@ -98,8 +96,7 @@ impl Beam {
             sin_half: (1.0 - cos_half * cos_half).max(0.0).sqrt(),
             length: length * (1.0 + SLACK),
             grow: offset + SLACK * scale,
-            target: *target,
-            slack: SLACK * scale,
+            ends: Aabb::new(target.min - SLACK * scale, target.max + SLACK * scale),
         })
     }
 
@@ -117,7 +114,7 @@ impl Beam {
     /// above them starts above them.
     #[inline]
     pub fn leaves_behind(&self, origin: Vec3, b: &Aabb) -> bool {
-        let (lo, hi) = (self.target.min - self.slack, self.target.max + self.slack);
+        let (lo, hi) = (self.ends.min, self.ends.max);
         (origin.cmpgt(b.max) & lo.cmpge(origin)).any()
             || (origin.cmplt(b.min) & hi.cmple(origin)).any()
     }
@@ -134,7 +131,7 @@ impl Beam {
     /// beyond it.
     #[inline]
     pub fn leaves_plane_behind(&self, origin: Vec3, b: &Aabb) -> bool {
-        let (lo, hi) = (self.target.min - self.slack, self.target.max + self.slack);
+        let (lo, hi) = (self.ends.min, self.ends.max);
         let flat = b.min.cmpeq(b.max);
         (flat & origin.cmpge(b.max) & lo.cmpgt(origin)).any()
             || (flat & origin.cmple(b.min) & hi.cmplt(origin)).any()
