@@ -175,7 +175,7 @@ impl SpawnPoints {
     /// The side a ray leaving in direction `w` starts on: `offset_ray_origin` depends on the
     /// direction only through the sign of `w · normal`.
     #[inline]
-    fn side(&self, w: Vec3) -> Side {
+    pub fn side(&self, w: Vec3) -> Side {
         if w.dot(self.normal) < 0.0 {
             Side::Below
         } else {

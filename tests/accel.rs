@@ -655,3 +655,96 @@ fn reachable_candidates_answer_every_shadow_ray_from_their_origin() {
         "{set_aside} for {floor_beams} beams"
     );
 }
+
+/// Rays that start inside a sphere (spawned below its surface, as refracted and internally
+/// reflected rays are) get from `Interiors` exactly the list's answer: spheres resting on a floor
+/// of triangles, touching each other, cut by a triangle, holding a smaller sphere, and alone,
+/// with an infinite plane and clutter about.
+#[test]
+fn rays_from_inside_spheres_get_the_answers_of_the_whole_tree() {
+    use raytracer::accel::Interiors;
+    use raytracer::ray::Side;
+    let mut prims = mixed_scene(60, 11);
+    let floor = [
+        Vec3::new(-6.0, -5.0, -6.0),
+        Vec3::new(6.0, -5.0, -6.0),
+        Vec3::new(6.0, -5.0, 6.0),
+        Vec3::new(-6.0, -5.0, 6.0),
+    ];
+    prims.push(tri(floor[0], floor[1], floor[2]));
+    prims.push(tri(floor[0], floor[2], floor[3]));
+    prims.push(plane(Vec3::new(0.0, 0.0, 1.0), -7.0));
+    let first_sphere = prims.len();
+    // Resting on the floor, two touching each other; one cut by a triangle; one holding a small
+    // one; one alone above everything.
+    prims.push(sphere(Vec3::new(-2.0, -4.2, 5.0), 0.8));
+    prims.push(sphere(Vec3::new(-0.4, -4.2, 5.0), 0.8));
+    prims.push(sphere(Vec3::new(2.0, -4.0, 5.0), 1.0));
+    prims.push(tri(
+        Vec3::new(1.0, -4.5, 4.0),
+        Vec3::new(3.5, -3.5, 5.0),
+        Vec3::new(1.5, -3.0, 6.5),
+    ));
+    prims.push(sphere(Vec3::new(0.0, 6.0, 0.0), 1.5));
+    prims.push(sphere(Vec3::new(0.3, 6.2, 0.1), 0.4));
+    prims.push(sphere(Vec3::new(0.0, 12.0, 3.0), 1.2));
+    let spheres: Vec<u32> = (first_sphere..prims.len())
+        .filter(|&p| matches!(prims[p].shape, Shape::Sphere(_)))
+        .map(|p| p as u32)
+        .collect();
+    let list = Accel::List;
+    let mut rng = Rng(0x1a5e);
+    let mut checked = 0;
+    for (name, accel) in accelerators(&prims) {
+        let interiors = Interiors::new(&prims, &accel, |_| true);
+        for &s in &spheres {
+            let Some(inside) = interiors.of(s) else {
+                continue;
+            };
+            let Shape::Sphere(ball) = &prims[s as usize].shape else {
+                unreachable!()
+            };
+            for k in 0..200 {
+                // A point on the sphere, hit from outside, and a ray from below it inwards.
+                let target = ball.center + ball.radius * rng.dir();
+                let from = target + (target - ball.center).normalize() * 3.0 + rng.dir();
+                let outer = Ray::new(from, (target - from).normalize());
+                let Some((p, c)) = list.closest(&prims, &outer, f32::INFINITY) else {
+                    continue;
+                };
+                if p != s {
+                    continue;
+                }
+                let hit = prims[p as usize].hit(&outer, c, p, &[]);
+                let spawn = hit.spawn_points();
+                let dir = match k % 4 {
+                    // Towards the lowest point (a floor's contact), grazing, at random.
+                    0 => (ball.center - Vec3::Y * ball.radius) - hit.point,
+                    1 => {
+                        let d = rng.dir();
+                        (d - d.dot(hit.normal) * hit.normal) - 1e-3 * hit.normal
+                    }
+                    _ => rng.dir() - 1.01 * hit.normal,
+                }
+                .normalize_or_zero();
+                if spawn.side(dir) != Side::Below {
+                    continue;
+                }
+                let ray = spawn.ray(dir);
+                for t_max in [f32::INFINITY, rng.range(0.0, 2.0 * ball.radius)] {
+                    let want = key(list.closest(&prims, &ray, t_max));
+                    let got = key(interiors.closest(&accel, &prims, inside, &ray, t_max));
+                    assert_eq!(got, want, "{name}: sphere {s}, ray {ray:?}, t_max {t_max}");
+                    checked += 1;
+                }
+            }
+        }
+        // The lone sphere and the ones on the floor have entries; the held sphere has the one it
+        // holds as a neighbour, so its rays are answered too. The plain list has none.
+        for &s in &spheres {
+            assert!(interiors.of(s).is_some(), "{name}: sphere {s} has no entry");
+        }
+    }
+    assert!(Interiors::new(&prims, &list, |_| true).is_empty());
+    assert!(checked > 10_000, "{checked} rays checked");
+}

@@ -16,6 +16,7 @@
 pub mod aabb;
 pub mod beam;
 pub mod bvh;
+pub mod interior;
 pub mod kernels;
 mod leaves;
 pub mod stack;
@@ -24,6 +25,7 @@ pub mod wide;
 
 pub use beam::Beam;
 pub use bvh::{Bvh, BvhOptions, BvhStats, Split};
+pub use interior::{Inside, Interiors};
 pub use wide::{Bvh4, Bvh8};
 
 use crate::geometry::{Candidate, Primitive, Shape};
@@ -244,6 +246,25 @@ impl Accel {
             Accel::Bvh(b) => b.beam_candidates(prims, beam, limit, out),
             Accel::Bvh4(b) => b.beam_candidates(prims, beam, limit, out),
             Accel::Bvh8(b) => b.beam_candidates(prims, beam, limit, out),
+        }
+    }
+
+    /// The bounded primitives whose boxes meet `region` (touching counts), written to `out`;
+    /// `false`, with `out` of no use, when there are more than `limit` or the accelerator is the
+    /// plain list (which keeps no boxes to find them by).
+    pub fn meeting_box(
+        &self,
+        prims: &[Primitive],
+        region: &Aabb,
+        limit: usize,
+        out: &mut Vec<u32>,
+    ) -> bool {
+        out.clear();
+        match self {
+            Accel::List => false,
+            Accel::Bvh(b) => b.meeting_box(prims, region, limit, out),
+            Accel::Bvh4(b) => b.meeting_box(prims, region, limit, out),
+            Accel::Bvh8(b) => b.meeting_box(prims, region, limit, out),
         }
     }
 

@@ -181,6 +181,47 @@ pub(super) fn beam_candidates(
     true
 }
 
+/// The bounded primitives whose boxes meet `region` (closed boxes: touching counts), written
+/// to `out` in no particular order; `false`, with `out` of no use, as soon as there would be more
+/// than `limit`.
+pub(super) fn meeting_box(
+    tree: &impl Tree,
+    prims: &[Primitive],
+    region: &Aabb,
+    limit: usize,
+    out: &mut Vec<u32>,
+) -> bool {
+    out.clear();
+    let meets = |b: &Aabb| b.min.cmple(region.max).all() && region.min.cmple(b.max).all();
+    let Some((lo, hi, root)) = tree.root() else {
+        return true;
+    };
+    if !meets(&Aabb::new(lo.into(), hi.into())) {
+        return true;
+    }
+    let mut stack: Stack<NodeRef, TRAVERSAL_STACK_SIZE> = Stack::new();
+    stack.push(root);
+    while let Some(n) = stack.pop() {
+        if n.count > 0 {
+            for p in tree.leaves().primitives(n.index, n.count) {
+                if meets(&prims[p as usize].shape.bounds()) {
+                    if out.len() >= limit {
+                        return false;
+                    }
+                    out.push(p);
+                }
+            }
+            continue;
+        }
+        for (b, child) in tree.children(n) {
+            if meets(&b) {
+                stack.push(child);
+            }
+        }
+    }
+    true
+}
+
 /// Node count, leaf count, depth and largest leaf. The empty leaves unused slots point at are
 /// not counted.
 pub(super) fn stats(tree: &impl Tree) -> BvhStats {

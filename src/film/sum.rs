@@ -23,6 +23,12 @@ const FRACTION_BITS: i32 = 48;
 /// clamped to it.
 pub const FINITE_LIMIT: f32 = (1u64 << 56) as f32;
 
+/// `x + 1.5·2⁵² − 1.5·2⁵²` is `x` rounded to the nearest integer, ties to even, for
+/// `|x| < 2⁵¹`: the sum lands where the doubles are spaced one apart, and the current rounding
+/// mode (to nearest, ties to even: Rust never changes it) does the rounding.
+const ROUNDER: f64 = 6_755_399_441_055_744.0;
+const ROUNDS_BY_ADDING: f64 = 2_251_799_813_685_248.0;
+
 /// The most samples one pixel may sum (the integer sum's headroom): 2²⁰.
 pub const MAX_SAMPLES: u32 = 1 << 20;
 
@@ -54,7 +60,12 @@ impl ChannelSum {
             // rounding to an integer below 2¹⁰⁴.
             let v = v.clamp(-FINITE_LIMIT, FINITE_LIMIT);
             let scaled = f64::from(v) * f64::from(FRACTION_BITS).exp2();
-            self.fixed += scaled.round_ties_even() as i128;
+            self.fixed += if scaled.abs() < ROUNDS_BY_ADDING {
+                // The same integer, without the software rounding and 128-bit conversion.
+                ((scaled + ROUNDER) - ROUNDER) as i64 as i128
+            } else {
+                scaled.round_ties_even() as i128
+            };
         }
     }
 
@@ -77,7 +88,12 @@ impl ChannelSum {
         } else {
             // One rounding to f64 (exact below 2⁵³ units), one exact scaling, one division,
             // one rounding to f32: a fixed sequence, so equal sums give equal means.
-            let sum = self.fixed as f64 * f64::from(-FRACTION_BITS).exp2();
+            // A sum that fits in 64 bits converts as one (the same correctly rounded value).
+            let fixed = match i64::try_from(self.fixed) {
+                Ok(small) => small as f64,
+                Err(_) => self.fixed as f64,
+            };
+            let sum = fixed * f64::from(-FRACTION_BITS).exp2();
             (sum / f64::from(count)) as f32
         }
     }
@@ -123,6 +139,40 @@ mod tests {
             s.add(v);
         }
         s
+    }
+
+    #[test]
+    fn rounding_by_adding_is_round_ties_even() {
+        assert_eq!(ROUNDER, 1.5 * 2f64.powi(52));
+        assert_eq!(ROUNDS_BY_ADDING, 2f64.powi(51));
+        let mut values = vec![
+            0.5,
+            1.5,
+            2.5,
+            -0.5,
+            -1.5,
+            -2.5,
+            0.49999999999999994,
+            1e-300,
+            -0.0,
+        ];
+        for k in 0..52 {
+            let x = 2f64.powi(k);
+            values.extend([x - 0.5, x + 0.5, -x - 0.5, x * 1.2345, -x * 0.987, x * 0.75]);
+        }
+        values.push(ROUNDS_BY_ADDING - 0.5);
+        values.push(-(ROUNDS_BY_ADDING - 0.5));
+        for x in values.into_iter().filter(|x| x.abs() < ROUNDS_BY_ADDING) {
+            assert_eq!((x + ROUNDER) - ROUNDER, x.round_ties_even(), "{x}");
+        }
+        // Both paths of `add`, and both of `mean`, agree with the 128-bit arithmetic.
+        for v in [0.1f32, 7.99, 8.0, 8.01, 1e3, -3.3, 1e10, FINITE_LIMIT] {
+            let mut s = ChannelSum::default();
+            s.add(v);
+            let want = (f64::from(v) * 2f64.powi(48)).round_ties_even() as i128;
+            assert_eq!(s.fixed, want, "{v}");
+            assert_eq!(s.mean(1), (want as f64 * 2f64.powi(-48)) as f32, "{v}");
+        }
     }
 
     #[test]

@@ -17,7 +17,7 @@ pub mod whitted;
 
 use std::sync::atomic::AtomicBool;
 
-use crate::accel::Accel;
+use crate::accel::{Accel, Interiors};
 use crate::light::Light;
 use crate::math::Vec3;
 use crate::ray::Ray;
@@ -84,6 +84,8 @@ pub struct Integrator<'a> {
     scene: &'a Scene,
     accel: &'a Accel,
     emitters: Option<emitters::Emitters>,
+    /// The Whitted tracer's quick answers for rays inside glass spheres.
+    interiors: Interiors,
 }
 
 impl<'a> Integrator<'a> {
@@ -92,6 +94,10 @@ impl<'a> Integrator<'a> {
             scene,
             accel,
             emitters: (kind == Kind::Path).then(|| emitters::Emitters::new(scene)),
+            interiors: match kind {
+                Kind::Whitted => whitted::interiors(scene, accel),
+                Kind::Path => Interiors::default(),
+            },
         }
     }
 
@@ -107,7 +113,7 @@ impl<'a> Integrator<'a> {
     ) -> Tracer<'a> {
         match &self.emitters {
             None => {
-                let mut w = Whitted::new(self.scene, self.accel, max_depth);
+                let mut w = Whitted::new(self.scene, self.accel, &self.interiors, max_depth);
                 w.options = options;
                 w.cancel = cancel;
                 Tracer::Whitted(w)

@@ -52,11 +52,11 @@ use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::accel::aabb::Aabb;
-use crate::accel::{reachable_from, Accel, Beam};
-use crate::light::Light;
+use crate::accel::{reachable_from, Accel, Beam, Inside, Interiors};
+use crate::light::{Light, LightSample};
 use crate::material::{highlight, Reflection};
 use crate::math::{fresnel_dielectric, local_to_world, reflect, refract, Vec2, Vec3};
-use crate::ray::{Hit, Ray, Side, SpawnPoints};
+use crate::ray::{Ray, Side, SpawnPoints};
 use crate::sampling::{blinn_phong_half_vector, Method, SampleKey};
 use crate::scene::{RenderMode, Scene};
 
@@ -111,6 +111,14 @@ const ADAPTIVE_PROBES: [Vec2; 9] = {
     ]
 };
 
+/// The spheres a Whitted ray can start inside of, for [`Whitted::interiors`]: the transmissive
+/// ones, which refracted rays enter and then reflect inside.
+pub fn interiors(scene: &Scene, accel: &Accel) -> Interiors {
+    Interiors::new(&scene.primitives, accel, |p| {
+        scene.materials[p.material as usize].is_transmissive()
+    })
+}
+
 /// A reflection or refraction ray not yet traced, and the factor its radiance is scaled by in
 /// its parent's.
 #[derive(Debug, Clone, Copy)]
@@ -122,6 +130,8 @@ struct Branch {
     /// Accumulated weight of the ray, for the cut-off.
     weight: f32,
     factor: f32,
+    /// The sphere the ray starts inside of, where [`Interiors`] answers its query.
+    inside: Option<Inside>,
 }
 
 /// What a shadow ray's any-hit query notes of the surfaces it hits, in a scene with transmissive
@@ -191,6 +201,8 @@ impl Open {
 pub struct Whitted<'a> {
     pub scene: &'a Scene,
     pub accel: &'a Accel,
+    /// Quick closest hits for rays that start inside glass spheres.
+    pub interiors: &'a Interiors,
     /// Cap on recursion on top of the scene's `nbounces`.
     pub max_depth: u32,
     pub options: TraceOptions,
@@ -211,13 +223,25 @@ pub struct Whitted<'a> {
     /// Whether quad lights take their samples four at a time ([`quad_lanes`]); only the
     /// tests that hold the lanes to the one-sample loop turn it off.
     lanes: bool,
+    /// Whether some shading point may draw a sample (an area light of more than one shadow ray,
+    /// a rough mirror), set per camera ray from [`Whitted::options`]. Where none can, the
+    /// branches' sample keys are never read and not derived.
+    draws: bool,
+    /// Whether some material has a rough mirror (fixed for the scene).
+    rough_mirrors: bool,
 }
 
 impl<'a> Whitted<'a> {
-    pub fn new(scene: &'a Scene, accel: &'a Accel, max_depth: u32) -> Whitted<'a> {
+    pub fn new(
+        scene: &'a Scene,
+        accel: &'a Accel,
+        interiors: &'a Interiors,
+        max_depth: u32,
+    ) -> Whitted<'a> {
         Whitted {
             scene,
             accel,
+            interiors,
             max_depth,
             options: TraceOptions::default(),
             counts: RayCounts::default(),
@@ -228,6 +252,8 @@ impl<'a> Whitted<'a> {
             candidates: Vec::new(),
             reachable: [Vec::new(), Vec::new()],
             lanes: true,
+            draws: true,
+            rough_mirrors: scene.materials.iter().any(|m| m.has_rough_mirror()),
         }
     }
 
@@ -241,6 +267,12 @@ impl<'a> Whitted<'a> {
     pub fn trace_camera(&mut self, ray: &Ray, key: &SampleKey) -> Vec3 {
         self.counts.camera += 1;
         self.budget = MAX_SECONDARY_RAYS_PER_SAMPLE;
+        self.draws = self.rough_mirrors
+            || self
+                .scene
+                .lights
+                .iter()
+                .any(|l| self.options.light_plan(l).0 > 1);
         let c = self.radiance(ray, key);
         finite_radiance(c)
     }
@@ -249,7 +281,7 @@ impl<'a> Whitted<'a> {
     /// radiance added, scaled, to its parent's once all its branches are done.
     fn radiance(&mut self, ray: &Ray, key: &SampleKey) -> Vec3 {
         let mut branches = [None, None];
-        let color = self.shade(ray, 0, key, 1.0, &mut branches);
+        let color = self.shade(ray, 0, key, 1.0, None, &mut branches);
         if branches.iter().all(Option::is_none) {
             return color;
         }
@@ -288,6 +320,7 @@ impl<'a> Whitted<'a> {
                 branch.depth,
                 &branch.key,
                 branch.weight,
+                branch.inside,
                 &mut branches,
             );
             if branches.iter().all(Option::is_none) {
@@ -306,7 +339,7 @@ impl<'a> Whitted<'a> {
 
     /// The direct light at the point `ray` hits at `depth` and the reflection and refraction rays
     /// it spawns; `weight` is the share of the camera sample's value the ray carries (for the
-    /// cut-off).
+    /// cut-off), and `inside` the sphere it starts inside of, if [`Interiors`] knows it.
     /// The rays are written to `branches` (refracted first, then reflected), which the caller
     /// passes empty; the point is finished when both stay empty.
     fn shade(
@@ -315,10 +348,18 @@ impl<'a> Whitted<'a> {
         depth: u32,
         key: &SampleKey,
         weight: f32,
+        inside: Option<Inside>,
         branches: &mut [Option<Branch>; 2],
     ) -> Vec3 {
         let scene = self.scene;
-        let Some((prim, cand)) = self.accel.closest(&scene.primitives, ray, f32::INFINITY) else {
+        let prims = &scene.primitives;
+        let found = match inside {
+            Some(i) => self
+                .interiors
+                .closest(self.accel, prims, i, ray, f32::INFINITY),
+            None => self.accel.closest(prims, ray, f32::INFINITY),
+        };
+        let Some((prim, cand)) = found else {
             return match scene.mode {
                 RenderMode::Binary => Vec3::ZERO,
                 RenderMode::Phong | RenderMode::Path => scene.background,
@@ -362,92 +403,23 @@ impl<'a> Whitted<'a> {
             has_highlight: material.ks > 0.0,
             exponent: material.exponent,
         };
-        let mut candidates = std::mem::take(&mut self.candidates);
-        let mut reachable = std::mem::take(&mut self.reachable);
         for (li, light) in scene.lights.iter().enumerate() {
             let (count, method) = self.options.light_plan(light);
-            // Each sample carries 1/count of what one sample alone would (its `weight`).
-            let share = 1.0 / count as f32;
-            let points = key.stream(li as u64).point_set(method, 0, count);
-            let intensity = light.intensity();
-            let surface = light.surface();
-            let known = if self.options.adaptive_lights && count > ADAPTIVE_PROBES.len() as u32 {
-                self.uniform_visibility(&hit, &spawn, n, light, &surface)
-            } else {
-                None
-            };
-            if known == Some(0.0) {
-                continue; // every probe is blocked: the light is taken as fully hidden
-            }
-            // The primitives this light's shadow rays may meet, once for all of them, and of
-            // those the ones the rays from each spawn origin may meet.
-            let only = (count > 1 && known.is_none())
-                .then(|| self.light_bounds[li])
-                .flatten()
-                .and_then(|b| Beam::new(hit.point, &b, spawn.offset()))
-                .filter(|beam| {
-                    self.accel.beam_candidates(
-                        &scene.primitives,
-                        beam,
-                        BEAM_CANDIDATE_LIMIT,
-                        &mut candidates,
-                    )
-                })
-                .map(|beam| {
-                    for (side, out) in [Side::Above, Side::Below].into_iter().zip(&mut reachable) {
-                        let origin = spawn.origin_on(side);
-                        reachable_from(&scene.primitives, &beam, &candidates, origin, out);
-                    }
-                    [reachable[0].as_slice(), reachable[1].as_slice()]
-                });
-            if let (Some(quad), None, true) = (Quad::of(light), known, count > 1 && self.lanes) {
-                let done = self.quad_light_lanes(
-                    &mut color, &shading, &quad, &points, count, share, &surface, only,
+            if count == 1 {
+                // One shadow ray, towards the light's centre (`sample_one`): no point is drawn.
+                if self.cancelled() {
+                    return color;
+                }
+                let sample = light.sample_one(hit.point);
+                let surface = light.surface();
+                self.add_sample(
+                    &mut color, &shading, light, &surface, &sample, 1.0, None, None,
                 );
-                if !done {
-                    self.candidates = candidates;
-                    self.reachable = reachable;
-                    return color;
-                }
-                continue;
-            }
-            for s in 0..count {
-                if s % SHADOW_RAYS_PER_CANCEL_CHECK == 0 && self.cancelled() {
-                    self.candidates = candidates;
-                    self.reachable = reachable;
-                    return color;
-                }
-                let sample = if count == 1 {
-                    light.sample_one(hit.point)
-                } else {
-                    light.sample(hit.point, points.point(s))
-                };
-                let to_light = sample.position - hit.point;
-                if to_light.dot(n) <= 0.0 {
-                    continue; // the light is behind the side we see: no shadow ray needed
-                }
-                let d2 = to_light.length_squared();
-                let visibility = match known {
-                    Some(v) => v,
-                    None => self.transmittance(&spawn, sample.position, &surface, only),
-                };
-                if visibility == 0.0 {
-                    continue;
-                }
-                let l = to_light / d2.sqrt();
-                let e = share * sample.weight * intensity.falloff(sample.falloff_d2) * visibility;
-                let n_dot_l = ns.dot(l).max(0.0);
-                color += material.kd * base * intensity.diffuse * (n_dot_l * e);
-                if material.ks > 0.0 {
-                    let h = (l + v).normalize_or_zero();
-                    let spec = highlight(ns.dot(h).max(0.0), material.exponent);
-                    color += material.ks * material.specular * intensity.specular * (spec * e);
-                }
+            } else if !self.area_light(&mut color, &shading, li, light, count, method, key) {
+                return color; // cancelled
             }
         }
 
-        self.candidates = candidates;
-        self.reachable = reachable;
         if scene.reflection == Reflection::Blended && material.kt == 0.0 && material.kr > 0.0 {
             // The mirror shows what it reflects in place of its own shading.
             color *= 1.0 - material.kr.min(1.0);
@@ -455,10 +427,18 @@ impl<'a> Whitted<'a> {
         if depth >= scene.nbounces.min(self.max_depth) {
             return color;
         }
+        // A ray leaving below a sphere's surface starts inside it.
+        let sphere = self.interiors.of(prim);
         let branch = |dir: Vec3, id: u64, factor: f32| Branch {
             ray: spawn.ray(dir),
+            inside: sphere.filter(|_| spawn.side(dir) == Side::Below),
             depth: depth + 1,
-            key: key.stream(0x1000 + id),
+            // Where nothing draws a sample the keys are never read: the parent's stands in.
+            key: if self.draws {
+                key.stream(0x1000 + id)
+            } else {
+                *key
+            },
             weight: weight * factor,
             factor,
         };
@@ -497,6 +477,119 @@ impl<'a> Whitted<'a> {
         color
     }
 
+    /// Adds to `color` the terms of the `count > 1` samples of `light` (light `li`) at the shading
+    /// point, each carrying `1/count` of what one sample alone would. `false` if the render was
+    /// cancelled on the way (then `color` holds the samples before).
+    ///
+    /// Kept out of line, so that [`Whitted::shade`] stays small for point lights.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn area_light(
+        &mut self,
+        color: &mut Vec3,
+        shading: &Shading,
+        li: usize,
+        light: &Light,
+        count: u32,
+        method: Method,
+        key: &SampleKey,
+    ) -> bool {
+        let scene = self.scene;
+        let spawn = shading.spawn;
+        let share = 1.0 / count as f32;
+        let points = key.stream(li as u64).point_set(method, 0, count);
+        let surface = light.surface();
+        let known = if self.options.adaptive_lights && count > ADAPTIVE_PROBES.len() as u32 {
+            self.uniform_visibility(shading, light, &surface)
+        } else {
+            None
+        };
+        if known == Some(0.0) {
+            return true; // every probe is blocked: the light is taken as fully hidden
+        }
+        // The primitives this light's shadow rays may meet, once for all of them, and of
+        // those the ones the rays from each spawn origin may meet.
+        let mut candidates = std::mem::take(&mut self.candidates);
+        let mut reachable = std::mem::take(&mut self.reachable);
+        let only = known
+            .is_none()
+            .then(|| self.light_bounds[li])
+            .flatten()
+            .and_then(|b| Beam::new(shading.point, &b, spawn.offset()))
+            .filter(|beam| {
+                self.accel.beam_candidates(
+                    &scene.primitives,
+                    beam,
+                    BEAM_CANDIDATE_LIMIT,
+                    &mut candidates,
+                )
+            })
+            .map(|beam| {
+                for (side, out) in [Side::Above, Side::Below].into_iter().zip(&mut reachable) {
+                    let origin = spawn.origin_on(side);
+                    reachable_from(&scene.primitives, &beam, &candidates, origin, out);
+                }
+                [reachable[0].as_slice(), reachable[1].as_slice()]
+            });
+        let done = match (Quad::of(light), known, self.lanes) {
+            (Some(quad), None, true) => {
+                self.quad_light_lanes(color, shading, &quad, &points, count, share, &surface, only)
+            }
+            _ => (0..count).all(|s| {
+                if s % SHADOW_RAYS_PER_CANCEL_CHECK == 0 && self.cancelled() {
+                    return false;
+                }
+                let sample = light.sample(shading.point, points.point(s));
+                self.add_sample(color, shading, light, &surface, &sample, share, known, only);
+                true
+            }),
+        };
+        self.candidates = candidates;
+        self.reachable = reachable;
+        done
+    }
+
+    /// Adds to `color` the diffuse and highlight terms of one light sample, of `share` of the
+    /// light (whose own primitives are `surface`), seen through the transmittance towards it (or `known`, where adaptive sampling
+    /// found it; `only` as for [`Whitted::transmittance`]). Nothing for a sample behind the side
+    /// of the surface we see: no shadow ray is traced for it.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn add_sample(
+        &mut self,
+        color: &mut Vec3,
+        shading: &Shading,
+        light: &Light,
+        surface: &Range<u32>,
+        sample: &LightSample,
+        share: f32,
+        known: Option<f32>,
+        only: Option<[&[u32]; 2]>,
+    ) {
+        let to_light = sample.position - shading.point;
+        if to_light.dot(shading.n) <= 0.0 {
+            return; // the light is behind the side we see: no shadow ray needed
+        }
+        let d2 = to_light.length_squared();
+        let visibility = match known {
+            Some(v) => v,
+            None => self.transmittance(shading.spawn, sample.position, surface, only),
+        };
+        if visibility == 0.0 {
+            return;
+        }
+        let intensity = light.intensity();
+        let l = to_light / d2.sqrt();
+        let e = share * sample.weight * intensity.falloff(sample.falloff_d2) * visibility;
+        let n_dot_l = shading.ns.dot(l).max(0.0);
+        *color += shading.kd_base * intensity.diffuse * (n_dot_l * e);
+        if shading.has_highlight {
+            let h = (l + shading.v).normalize_or_zero();
+            let spec = highlight(shading.ns.dot(h).max(0.0), shading.exponent);
+            *color += shading.ks_specular * intensity.specular * (spec * e);
+        }
+    }
+
     /// Whether a secondary ray of accumulated `weight` passes the cut-off (always, without one).
     #[inline]
     fn worth_tracing(&self, weight: f32) -> bool {
@@ -504,22 +597,20 @@ impl<'a> Whitted<'a> {
     }
 
     /// Adaptive area-light sampling: the transmittance the light's probe points all see from
-    /// `hit`, or `None` when they disagree or a probe point is behind the surface.
+    /// the shading point, or `None` when they disagree or a probe point is behind the surface.
     fn uniform_visibility(
         &mut self,
-        hit: &Hit,
-        spawn: &SpawnPoints,
-        n: Vec3,
+        shading: &Shading,
         light: &Light,
         surface: &Range<u32>,
     ) -> Option<f32> {
         let mut seen = None;
         for u in ADAPTIVE_PROBES {
-            let p = light.sample(hit.point, u).position;
-            if (p - hit.point).dot(n) <= 0.0 {
+            let p = light.sample(shading.point, u).position;
+            if (p - shading.point).dot(shading.n) <= 0.0 {
                 return None;
             }
-            let v = self.transmittance(spawn, p, surface, None);
+            let v = self.transmittance(shading.spawn, p, surface, None);
             match seen {
                 None => seen = Some(v),
                 Some(s) if s != v => return None,
@@ -589,8 +680,13 @@ impl<'a> Whitted<'a> {
         let (mut ray, dist) = from.ray_to(target);
         let mut t_max = dist * (1.0 - LIGHT_CLEARANCE);
         let mut through = 1.0;
+        let mut inside = None;
         for _ in 0..MAX_SHADOW_CROSSINGS {
-            let Some((p, c)) = self.accel.closest(prims, &ray, t_max) else {
+            let found = match inside {
+                Some(i) => self.interiors.closest(self.accel, prims, i, &ray, t_max),
+                None => self.accel.closest(prims, &ray, t_max),
+            };
+            let Some((p, c)) = found else {
                 return through;
             };
             let prim = &prims[p as usize];
@@ -602,7 +698,10 @@ impl<'a> Whitted<'a> {
                 through *= material.kt;
             }
             let h = prim.hit_with(&ray, c, p, &scene.meshes, false);
-            let (next, d) = h.spawn_to(target);
+            let spawn = h.spawn_points();
+            let side = spawn.side_to(target);
+            let (next, d) = spawn.ray_from(side, target);
+            inside = self.interiors.of(p).filter(|_| side == Side::Below);
             ray = next;
             t_max = d * (1.0 - LIGHT_CLEARANCE);
         }
