@@ -32,6 +32,21 @@ const ROUNDS_BY_ADDING: f64 = 2_251_799_813_685_248.0;
 /// The most samples one pixel may sum (the integer sum's headroom): 2²⁰.
 pub const MAX_SAMPLES: u32 = 1 << 20;
 
+/// `x` rounded to an integer, ties to even, for `x` up to 2¹⁰⁴. Out of line: inlined, the
+/// compiler computed its software conversion on every sample, the fast path's too.
+#[cold]
+#[inline(never)]
+fn wide_round(x: f64) -> i128 {
+    x.round_ties_even() as i128
+}
+
+/// `x` rounded to the nearest `f64`; out of line for the same reason as [`wide_round`].
+#[cold]
+#[inline(never)]
+fn wide_to_f64(x: i128) -> f64 {
+    x as f64
+}
+
 /// The exact sum of one colour channel's samples.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct ChannelSum {
@@ -64,7 +79,7 @@ impl ChannelSum {
                 // The same integer, without the software rounding and 128-bit conversion.
                 ((scaled + ROUNDER) - ROUNDER) as i64 as i128
             } else {
-                scaled.round_ties_even() as i128
+                wide_round(scaled)
             };
         }
     }
@@ -91,7 +106,7 @@ impl ChannelSum {
             // A sum that fits in 64 bits converts as one (the same correctly rounded value).
             let fixed = match i64::try_from(self.fixed) {
                 Ok(small) => small as f64,
-                Err(_) => self.fixed as f64,
+                Err(_) => wide_to_f64(self.fixed),
             };
             let sum = fixed * f64::from(-FRACTION_BITS).exp2();
             (sum / f64::from(count)) as f32
