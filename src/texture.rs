@@ -26,6 +26,7 @@ use std::path::Path;
 use glam::{Vec2, Vec3};
 
 use crate::image_io::{read_image_with, ImageError, ReadLimits};
+use crate::math::floor_f64;
 use crate::scene::load::DEFAULT_MAX_TEXTURE_PIXELS;
 
 /// An RGB image texture.
@@ -138,9 +139,9 @@ const CENTRE_SNAP: f64 = 1e-4;
 fn wrap_axis(t: f32, n: u32) -> (u32, u32, f32) {
     // Reduce to [0, 1) first, in f64 so large coordinates keep their fraction.
     let t = f64::from(t);
-    let frac = t - t.floor();
+    let frac = t - floor_f64(t);
     let x = frac * f64::from(n) - 0.5;
-    let mut x0 = x.floor();
+    let mut x0 = floor_f64(x);
     let mut w = x - x0;
     if w < CENTRE_SNAP {
         w = 0.0;

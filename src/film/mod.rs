@@ -197,7 +197,7 @@ pub fn tonemap(c: Vec3, map: ToneMap, exposure: f32) -> Vec3 {
 /// (`⌊v·255 + 0.5⌋`).
 fn to_byte(v: f32, map: ToneMap) -> u8 {
     let bias = if map == ToneMap::Linear { 0.0 } else { 0.5 };
-    (v * 255.0 + bias).floor().clamp(0.0, 255.0) as u8
+    crate::math::floor_f32(v * 255.0 + bias).clamp(0.0, 255.0) as u8
 }
 
 /// 8-bit RGB bytes of the film (see `to_byte` for the quantisation):

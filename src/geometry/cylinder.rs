@@ -126,7 +126,7 @@ impl Cylinder {
             point = self.center + normal * r + self.axis * z;
             uv = if want_uv {
                 let phi = radial.y.atan2(radial.x) / std::f32::consts::TAU;
-                Vec2::new(phi - phi.floor(), (h - z) / (2.0 * h))
+                Vec2::new(phi - crate::math::floor_f32(phi), (h - z) / (2.0 * h))
             } else {
                 Vec2::ZERO
             };

@@ -11,7 +11,7 @@
 
 use super::Candidate;
 use crate::accel::aabb::Aabb;
-use crate::math::{gamma, Vec2, Vec3};
+use crate::math::{floor_f32, gamma, Vec2, Vec3};
 use crate::ray::{Hit, Ray};
 
 #[derive(Debug, Clone, PartialEq)]
@@ -106,7 +106,7 @@ impl Sphere {
         let east = self.pole.cross(self.meridian);
         let phi = n.dot(east).atan2(n.dot(self.meridian));
         let u = phi / std::f32::consts::TAU;
-        Vec2::new(u - u.floor(), cos_theta.acos() / std::f32::consts::PI)
+        Vec2::new(u - floor_f32(u), cos_theta.acos() / std::f32::consts::PI)
     }
 }
 
