@@ -345,6 +345,99 @@ pub fn read_image(path: &Path) -> Result<Film, ImageError> {
 /// [`read_image`] under `limits`: an image whose header gives more than `limits.max_pixels`
 /// pixels is refused before it is decoded ([`ImageError::TooLarge`]).
 pub fn read_image_with(path: &Path, limits: &ReadLimits) -> Result<Film, ImageError> {
+    let decoded = decode_with(path, limits)?;
+    decoded.into_film(path)
+}
+
+/// An image as a texture keeps it: 8-bit samples as their bytes, anything else as
+/// [`read_image_with`]'s floats.
+pub enum TextureImage {
+    /// Colour (`gray: false`) or grey samples of 8 bits, three bytes a pixel (grey repeated),
+    /// alpha dropped, row-major from the top. [`read_image_with`] gives such a byte `b` the
+    /// value `b / 255` in colour and `b · (1/255)` in grey.
+    Bytes {
+        width: u32,
+        height: u32,
+        texels: Vec<[u8; 3]>,
+        gray: bool,
+    },
+    /// Any other image, as [`read_image_with`] reads it.
+    Floats(Film),
+}
+
+/// [`read_image_with`] for a texture: the same image, with 8-bit samples left as bytes (a
+/// quarter of the floats' memory).
+pub fn read_texture_with(path: &Path, limits: &ReadLimits) -> Result<TextureImage, ImageError> {
+    let decoded = decode_with(path, limits)?;
+    let (channels, gray) = match decoded.color {
+        ColorType::Rgb8 => (3, false),
+        ColorType::Rgba8 => (4, false),
+        ColorType::L8 => (1, true),
+        ColorType::La8 => (2, true),
+        _ => return Ok(TextureImage::Floats(decoded.into_film(path)?)),
+    };
+    let mut texels = Vec::new();
+    texels
+        .try_reserve_exact(decoded.pixels())
+        .map_err(|_| decoded.out_of_memory(path, decoded.pixels() as u64 * 3))?;
+    let chunks = decoded.raw.chunks_exact(channels);
+    if gray {
+        texels.extend(chunks.map(|px| [px[0]; 3]));
+    } else {
+        texels.extend(chunks.map(|px| [px[0], px[1], px[2]]));
+    }
+    Ok(TextureImage::Bytes {
+        width: decoded.width,
+        height: decoded.height,
+        texels,
+        gray,
+    })
+}
+
+/// An image's decoded samples, as the decoder wrote them.
+struct Decoded {
+    width: u32,
+    height: u32,
+    color: ColorType,
+    raw: Vec<u8>,
+}
+
+impl Decoded {
+    fn pixels(&self) -> usize {
+        self.width as usize * self.height as usize
+    }
+
+    fn out_of_memory(&self, path: &Path, bytes: u64) -> ImageError {
+        ImageError::OutOfMemory {
+            path: path.to_path_buf(),
+            width: self.width,
+            height: self.height,
+            bytes,
+        }
+    }
+
+    /// The samples as float RGB (see [`read_image`]).
+    fn into_film(self, path: &Path) -> Result<Film, ImageError> {
+        let color = self.color;
+        let texels = to_rgb_f32(color, &self.raw, self.pixels()).map_err(|kind| match kind {
+            Conversion::OutOfMemory => self.out_of_memory(path, self.pixels() as u64 * 12),
+            Conversion::Unsupported => ImageError::Decode {
+                path: path.to_path_buf(),
+                source: image::ImageError::Unsupported(
+                    image::error::UnsupportedError::from_format_and_kind(
+                        image::error::ImageFormatHint::Unknown,
+                        image::error::UnsupportedErrorKind::Color(color.into()),
+                    ),
+                ),
+            },
+        })?;
+        Ok(Film::from_pixels(self.width, self.height, texels))
+    }
+}
+
+/// Opens, checks and decodes an image under `limits` (the work of [`read_image_with`] up to the
+/// conversion of its samples).
+fn decode_with(path: &Path, limits: &ReadLimits) -> Result<Decoded, ImageError> {
     let open_err = |source: io::Error| ImageError::Open {
         path: path.to_path_buf(),
         source,
@@ -413,19 +506,12 @@ pub fn read_image_with(path: &Path, limits: &ReadLimits) -> Result<Film, ImageEr
         .map(|n| raw.resize(n, 0u8))
         .ok_or_else(|| out_of_memory(total))?;
     decoder.read_image(&mut raw).map_err(decode_err)?;
-    let texels = to_rgb_f32(color, &raw, pixels as usize).map_err(|kind| match kind {
-        Conversion::OutOfMemory => out_of_memory(pixels.saturating_mul(12)),
-        Conversion::Unsupported => ImageError::Decode {
-            path: path.to_path_buf(),
-            source: image::ImageError::Unsupported(
-                image::error::UnsupportedError::from_format_and_kind(
-                    image::error::ImageFormatHint::Unknown,
-                    image::error::UnsupportedErrorKind::Color(color.into()),
-                ),
-            ),
-        },
-    })?;
-    Ok(Film::from_pixels(width, height, texels))
+    Ok(Decoded {
+        width,
+        height,
+        color,
+        raw,
+    })
 }
 
 /// Why decoded samples could not become float RGB.

@@ -18,6 +18,7 @@ use raytracer::math::Vec3;
 use raytracer::metric::{flip_map, mean_flip, mse, Region};
 use raytracer::render::{render, RenderOptions};
 use raytracer::scene::{load, LoadOptions, Scene};
+use raytracer::texture::Texture;
 
 /// Largest MSE (linear RGB in [0, 1]) a render may have against its reference.
 const MAX_MSE: f64 = 1e-6;
@@ -172,10 +173,11 @@ fn tolerances_catch_shifts_flips_and_brightness_changes() {
             let mut flipped = scene.clone();
             for t in &mut flipped.textures {
                 let (tw, th) = (t.width as usize, t.height as usize);
-                t.texels = (0..th)
-                    .rev()
-                    .flat_map(|y| t.texels[y * tw..(y + 1) * tw].to_vec())
-                    .collect();
+                let texels = t.texels();
+                let rows = (0..th).rev();
+                let upside_down = rows.flat_map(|y| texels[y * tw..(y + 1) * tw].to_vec());
+                *t = Texture::from_texels(t.width, t.height, upside_down.collect())
+                    .with_offset(t.offset);
             }
             let wrong = displayed(&flipped);
             assert!(

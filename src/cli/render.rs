@@ -69,7 +69,8 @@ struct Cli {
     #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_SCENE_BYTES)]
     max_scene_bytes: u64,
     /// Refuse textures with more texels (width × height) than this, read from the image's header
-    /// before decoding (a texture takes 12 bytes per texel; the default is 8192², 768 MiB).
+    /// before decoding (a texture takes 3 bytes a texel from an 8-bit image, 12 from a 16-bit or
+    /// EXR one; the default is 8192², 192 or 768 MiB).
     #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_TEXTURE_PIXELS)]
     max_texture_pixels: u64,
     /// Refuse mesh files (PLY, OBJ) larger than this many bytes; they are read whole.

@@ -50,7 +50,8 @@ pub const DEFAULT_MAX_PIXEL_SAMPLES: u32 = 65_536;
 /// file's size in memory, and the largest real scene files (inline meshes) are under 2 MiB.
 pub const DEFAULT_MAX_SCENE_BYTES: u64 = 64 << 20;
 /// Default cap on one texture's `width × height`: 2^26 texels (67 megapixels, e.g. 8192²). A
-/// texture is stored as 12-byte float texels, so this is 768 MiB; the check uses the image's
+/// texture from an 8-bit image keeps 3 bytes a texel (192 MiB at this cap), other images 12-byte
+/// float texels (768 MiB); the check uses the image's
 /// header, before anything is decoded, so a small file claiming a huge image fails at once.
 pub const DEFAULT_MAX_TEXTURE_PIXELS: u64 = 1 << 26;
 /// Default cap on a mesh file's size: 2 GiB. Mesh files are read whole into memory; the largest
