@@ -6,14 +6,17 @@ use glam::{BVec4A, Vec3, Vec4};
 
 use crate::ray::PreparedRay;
 
-/// The per-ray values of the four-lane kernels, worked out once per ray from a [`PreparedRay`]:
-/// those of the box clamp and the sphere test in lanes. The triangle test's permuted origin and
-/// shear are splatted from the prepared ray by the triangle kernel itself, only for the rays that
-/// reach a triangle block.
+/// The per-ray values of the four-lane kernels, worked out once per ray from a [`PreparedRay`].
 #[derive(Debug, Clone, Copy)]
-pub struct Ray4<'r> {
-    /// The ray these values are of.
-    pub(super) prepared: &'r PreparedRay,
+pub struct Ray4 {
+    /// The watertight triangle test's axis permutation `(kx, ky, kz)`.
+    pub(super) axes: [usize; 3],
+    /// The origin in the permuted axes.
+    pub(super) origin_k: [Vec4; 3],
+    /// The triangle test's shear `(sx, sy, sz)`.
+    pub(super) shear: [Vec4; 3],
+    /// Whether the triangle test can run at all ([`PreparedRay::shear_ok`]).
+    pub(super) shear_ok: bool,
     /// The origin and direction per world axis, and the direction's squared length.
     pub(in crate::accel) origin: [Vec4; 3],
     pub(super) dir: [Vec4; 3],
@@ -24,13 +27,17 @@ pub struct Ray4<'r> {
     negative: [bool; 3],
 }
 
-impl<'r> Ray4<'r> {
+impl Ray4 {
     #[inline(always)]
-    pub fn new(r: &'r PreparedRay) -> Ray4<'r> {
+    pub fn new(r: &PreparedRay) -> Ray4 {
+        let axes = crate::ray::axis_permutation(r.kz);
         let o = r.ray.origin.to_array();
         let d: Vec3 = r.ray.dir;
         Ray4 {
-            prepared: r,
+            axes,
+            origin_k: axes.map(|k| Vec4::splat(o[k])),
+            shear: [r.shear.x, r.shear.y, r.shear.z].map(Vec4::splat),
+            shear_ok: r.shear_ok,
             origin: o.map(Vec4::splat),
             dir: d.to_array().map(Vec4::splat),
             dir_length2: Vec4::splat(d.length_squared()),

@@ -52,21 +52,17 @@ impl Triangle4 {
     /// Every lane's [`Shape::intersect_prepared`](crate::geometry::Shape::intersect_prepared) with bound
     /// `t_max`, but for the lanes returned in [`Hits4::scalar`].
     #[inline(always)]
-    pub fn intersect(&self, r: &Ray4<'_>, t_max: f32) -> Hits4 {
-        let pr = r.prepared;
-        if !pr.shear_ok || self.lanes == 0 {
+    pub fn intersect(&self, r: &Ray4, t_max: f32) -> Hits4 {
+        if !r.shear_ok || self.lanes == 0 {
             return Hits4::NONE;
         }
-        let [kx, ky, kz] = crate::ray::axis_permutation(pr.kz);
-        let o = pr.ray.origin;
-        let origin_k = [Vec4::splat(o[kx]), Vec4::splat(o[ky]), Vec4::splat(o[kz])];
-        let shear = pr.shear.to_array().map(Vec4::splat);
+        let [kx, ky, kz] = r.axes;
         // Translate to the origin, permute, shear (`watertight` in triangle.rs).
         let corner = |c: usize| {
-            let x = self.p[c][kx] - origin_k[0];
-            let y = self.p[c][ky] - origin_k[1];
-            let z = self.p[c][kz] - origin_k[2];
-            (x + shear[0] * z, y + shear[1] * z, z)
+            let x = self.p[c][kx] - r.origin_k[0];
+            let y = self.p[c][ky] - r.origin_k[1];
+            let z = self.p[c][kz] - r.origin_k[2];
+            (x + r.shear[0] * z, y + r.shear[1] * z, z)
         };
         let (x0, y0, z0) = corner(0);
         let (x1, y1, z1) = corner(1);
@@ -88,7 +84,7 @@ impl Triangle4 {
             };
         }
         let max_z = z0.abs().max(z1.abs()).max(z2.abs());
-        let (z0, z1, z2) = (z0 * shear[2], z1 * shear[2], z2 * shear[2]);
+        let (z0, z1, z2) = (z0 * r.shear[2], z1 * r.shear[2], z2 * r.shear[2]);
         let t_scaled = e0 * z0 + e1 * z1 + e2 * z2;
         let behind =
             (det.cmplt(zero) & t_scaled.cmpge(zero)) | (det.cmpgt(zero) & t_scaled.cmple(zero));
