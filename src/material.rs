@@ -160,8 +160,6 @@ mod tests {
         }
     }
 
-    /// The whole-exponent highlight against a double-precision power, over the cosines and
-    /// exponents scenes use.
     #[test]
     fn whole_exponents_are_the_whole_numbers_up_to_the_limit() {
         let by_fract = |e: f32| (0.0..=MAX_WHOLE_EXPONENT).contains(&e) && e.fract() == 0.0;
@@ -175,6 +173,8 @@ mod tests {
         }
     }
 
+    /// The whole-exponent highlight against a double-precision power, over the cosines and
+    /// exponents scenes use.
     #[test]
     fn whole_exponent_highlight_is_within_its_bound() {
         for exponent in [

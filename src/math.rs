@@ -155,6 +155,19 @@ pub fn max_dimension(v: Vec3) -> usize {
     }
 }
 
+/// `a · b` for four vectors at once (per axis, one lane per vector), in [`Vec3::dot`]'s order
+/// of operations: lane by lane the same bits.
+#[inline(always)]
+pub fn dot4(a: &[glam::Vec4; 3], b: &[glam::Vec4; 3]) -> glam::Vec4 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// `v` in every lane, per axis: the form of [`dot4`]'s operands.
+#[inline(always)]
+pub fn splat4(v: Vec3) -> [glam::Vec4; 3] {
+    v.to_array().map(glam::Vec4::splat)
+}
+
 /// The square root of each lane: IEEE `sqrt` is correctly rounded, so lane `l` holds the bits of
 /// `v[l].sqrt()` whether the CPU takes one packed instruction or four scalar ones.
 #[inline(always)]

@@ -1,7 +1,7 @@
 //! Rays, surface hits, and the robust origin offset that keeps spawned rays from re-hitting the
 //! surface they leave.
 
-use crate::math::{Vec2, Vec3};
+use crate::math::{dot4, splat4, Vec2, Vec3};
 use glam::{BVec3A, Vec3A, Vec4};
 
 /// A ray `origin + t·dir`. `dir` need not be unit length for intersection, but every ray the
@@ -253,20 +253,18 @@ impl SpawnPoints {
     #[inline(always)]
     pub fn rays_to4(&self, target: [Vec4; 3]) -> RaysTo4 {
         let zero = Vec4::ZERO;
-        let dot = |a: &[Vec4; 3], b: &[Vec4; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-        let splat = |v: Vec3| v.to_array().map(Vec4::splat);
         let [point, normal, above, below] =
-            [self.point, self.normal, self.above, self.below].map(splat);
+            [self.point, self.normal, self.above, self.below].map(splat4);
         // `side_to`: the sign of `normalize_or_zero(target − point) · normal`.
         let w = [0, 1, 2].map(|a| target[a] - point[a]);
-        let rcp = Vec4::ONE / crate::math::sqrt4(dot(&w, &w));
+        let rcp = Vec4::ONE / crate::math::sqrt4(dot4(&w, &w));
         let normalized = rcp.abs().cmplt(Vec4::INFINITY) & rcp.cmpgt(zero);
         let w = w.map(|c| Vec4::select(normalized, c * rcp, zero));
-        let leaves_below = dot(&w, &normal).cmplt(zero);
+        let leaves_below = dot4(&w, &normal).cmplt(zero);
         // `ray_from`.
         let origin = [0, 1, 2].map(|a| Vec4::select(leaves_below, below[a], above[a]));
         let to = [0, 1, 2].map(|a| target[a] - origin[a]);
-        let dist = crate::math::sqrt4(dot(&to, &to));
+        let dist = crate::math::sqrt4(dot4(&to, &to));
         // `max` returns its second operand for NaN, as `f32::max` returns the number.
         let len = dist.max(Vec4::splat(f32::MIN_POSITIVE));
         RaysTo4 {

@@ -15,7 +15,7 @@
 use glam::Vec4;
 
 use crate::accel::aabb::Aabb;
-use crate::math::{sqrt4, Vec3};
+use crate::math::{dot4, splat4, sqrt4, Vec3};
 
 /// Relative slack on every distance and cosine of the cone test: rounding in the shadow ray's
 /// direction and in the primitive tests is a few units of 2⁻²⁴ (6·10⁻⁸); this is a thousand
@@ -173,12 +173,12 @@ impl Beam {
         let half = Vec4::splat(0.5);
         let center = [0, 1, 2].map(|a| half * (lo[a] + hi[a]));
         let e = [0, 1, 2].map(|a| hi[a] - lo[a]);
-        let radius = half * sqrt4(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+        let radius = half * sqrt4(dot4(&e, &e));
         // `may_hit_ball`, lane by lane.
         let r = radius * Vec4::splat(1.0 + SLACK) + Vec4::splat(self.grow);
         let apex = self.apex.to_array();
         let v = [0, 1, 2].map(|a| center[a] - Vec4::splat(apex[a]));
-        let d2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+        let d2 = dot4(&v, &v);
         // The apex in the ball, or a NaN: `d2 > r²` fails.
         let near = !d2.cmpgt(r * r).bitmask() & 0b1111;
         let d = sqrt4(d2);
@@ -186,9 +186,7 @@ impl Beam {
         let sin_b = r / d;
         let cos_b = sqrt4((Vec4::ONE - sin_b * sin_b).max(Vec4::ZERO));
         let cos_sum = Vec4::splat(self.cos_half) * cos_b - Vec4::splat(self.sin_half) * sin_b;
-        let axis = self.axis.to_array();
-        let along =
-            v[0] * Vec4::splat(axis[0]) + v[1] * Vec4::splat(axis[1]) + v[2] * Vec4::splat(axis[2]);
+        let along = dot4(&v, &splat4(self.axis));
         let in_cone = along.cmpge((cos_sum - Vec4::splat(SLACK)) * d).bitmask();
         near | (within & in_cone)
     }

@@ -660,17 +660,6 @@ impl Bvh {
         traverse::stats(self)
     }
 
-    /// See [`crate::accel::Accel::meeting_box`].
-    pub fn meeting_box(
-        &self,
-        prims: &[Primitive],
-        region: &Aabb,
-        limit: usize,
-        out: &mut Vec<u32>,
-    ) -> bool {
-        traverse::meeting_box(self, prims, region, limit, out)
-    }
-
     /// See [`crate::accel::Accel::beam_candidates`].
     pub fn beam_candidates(
         &self,

@@ -84,13 +84,10 @@ impl Interiors {
             if !accel.meeting_box(prims, &region, MAX_NEIGHBOURS + 1, &mut near) {
                 continue;
             }
+            // The sphere is among them (its box meets its grown box), each bounded primitive once.
             let start = table.tested.len() as u32;
             near.extend(&unbounded);
-            if !near.contains(&(p as u32)) {
-                near.push(p as u32); // not reached: a sphere's box meets its grown box
-            }
             near.sort_unstable();
-            near.dedup();
             table.tested.extend(near.iter().map(|&p| {
                 let b = prims[p as usize].shape.bounds();
                 Neighbour {
@@ -109,20 +106,13 @@ impl Interiors {
     /// The entry of primitive `p`, if rays from inside it are answered here.
     #[inline]
     pub fn of(&self, p: u32) -> Option<Inside> {
-        if self.spheres.is_empty() {
-            return None;
-        }
         self.spheres
             .binary_search_by_key(&p, |e| e.0)
             .ok()
             .map(|i| Inside(i as u32))
     }
 
-    /// How many spheres have entries.
-    pub fn len(&self) -> usize {
-        self.spheres.len()
-    }
-
+    /// Whether no sphere has an entry.
     pub fn is_empty(&self) -> bool {
         self.spheres.is_empty()
     }
@@ -140,12 +130,8 @@ impl Interiors {
     ) -> Option<(u32, Candidate)> {
         let (sphere, start, end) = self.spheres[inside.0 as usize];
         let r = PreparedRay::new(ray);
-        let own = if t_max > 0.0 {
-            prims[sphere as usize].shape.intersect_prepared(&r, t_max)
-        } else {
-            None
-        };
-        let Some(own) = own else {
+        // (None too for a `t_max` that is not positive, as the tree would answer.)
+        let Some(own) = prims[sphere as usize].shape.intersect_prepared(&r, t_max) else {
             return accel.closest(prims, ray, t_max);
         };
         let mut best = Best::new(t_max);

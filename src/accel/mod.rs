@@ -262,9 +262,9 @@ impl Accel {
         out.clear();
         match self {
             Accel::List => false,
-            Accel::Bvh(b) => b.meeting_box(prims, region, limit, out),
-            Accel::Bvh4(b) => b.meeting_box(prims, region, limit, out),
-            Accel::Bvh8(b) => b.meeting_box(prims, region, limit, out),
+            Accel::Bvh(b) => traverse::meeting_box(b, prims, region, limit, out),
+            Accel::Bvh4(b) => traverse::meeting_box(b, prims, region, limit, out),
+            Accel::Bvh8(b) => traverse::meeting_box(b, prims, region, limit, out),
         }
     }
 

@@ -263,17 +263,6 @@ impl<const C: usize> WideBvh<C> {
         traverse::stats(self)
     }
 
-    /// See [`crate::accel::Accel::meeting_box`].
-    pub fn meeting_box(
-        &self,
-        prims: &[Primitive],
-        region: &Aabb,
-        limit: usize,
-        out: &mut Vec<u32>,
-    ) -> bool {
-        traverse::meeting_box(self, prims, region, limit, out)
-    }
-
     /// See [`crate::accel::Accel::beam_candidates`].
     pub fn beam_candidates(
         &self,
@@ -338,10 +327,8 @@ impl<const C: usize> Tree for WideBvh<C> {
         for g in 0..C {
             let lo = [0, 1, 2].map(|a| Vec4::from_array(node.lo[a][g]));
             let hi = [0, 1, 2].map(|a| Vec4::from_array(node.hi[a][g]));
-            let mut mask = beam.may_hit_boxes4(lo, hi);
-            while mask != 0 {
-                visit(node.child(4 * g + mask.trailing_zeros() as usize));
-                mask &= mask - 1;
+            for l in lanes(beam.may_hit_boxes4(lo, hi)) {
+                visit(node.child(4 * g + l));
             }
         }
     }

@@ -113,8 +113,8 @@ impl<'a> Integrator<'a> {
     ) -> Tracer<'a> {
         match &self.emitters {
             None => {
-                let mut w = Whitted::new(self.scene, self.accel, &self.interiors, max_depth);
-                w.options = options;
+                let mut w =
+                    Whitted::new(self.scene, self.accel, &self.interiors, max_depth, options);
                 w.cancel = cancel;
                 Tracer::Whitted(w)
             }

@@ -205,7 +205,7 @@ pub struct Whitted<'a> {
     pub interiors: &'a Interiors,
     /// Cap on recursion on top of the scene's `nbounces`.
     pub max_depth: u32,
-    pub options: TraceOptions,
+    options: TraceOptions,
     pub counts: RayCounts,
     /// When set (from any thread), tracing stops at the next shading point or batch of shadow
     /// rays and the radiance returned is meaningless; the caller must throw the sample away.
@@ -224,11 +224,9 @@ pub struct Whitted<'a> {
     /// tests that hold the lanes to the one-sample loop turn it off.
     lanes: bool,
     /// Whether some shading point may draw a sample (an area light of more than one shadow ray,
-    /// a rough mirror), set per camera ray from [`Whitted::options`]. Where none can, the
-    /// branches' sample keys are never read and not derived.
+    /// a rough mirror). Where none can, the branches' sample keys are never read and not
+    /// derived.
     draws: bool,
-    /// Whether some material has a rough mirror (fixed for the scene).
-    rough_mirrors: bool,
 }
 
 impl<'a> Whitted<'a> {
@@ -237,13 +235,16 @@ impl<'a> Whitted<'a> {
         accel: &'a Accel,
         interiors: &'a Interiors,
         max_depth: u32,
+        options: TraceOptions,
     ) -> Whitted<'a> {
+        let draws = scene.materials.iter().any(|m| m.has_rough_mirror())
+            || scene.lights.iter().any(|l| options.light_plan(l).0 > 1);
         Whitted {
             scene,
             accel,
             interiors,
             max_depth,
-            options: TraceOptions::default(),
+            options,
             counts: RayCounts::default(),
             cancel: None,
             budget: MAX_SECONDARY_RAYS_PER_SAMPLE,
@@ -252,8 +253,7 @@ impl<'a> Whitted<'a> {
             candidates: Vec::new(),
             reachable: [Vec::new(), Vec::new()],
             lanes: true,
-            draws: true,
-            rough_mirrors: scene.materials.iter().any(|m| m.has_rough_mirror()),
+            draws,
         }
     }
 
@@ -267,12 +267,6 @@ impl<'a> Whitted<'a> {
     pub fn trace_camera(&mut self, ray: &Ray, key: &SampleKey) -> Vec3 {
         self.counts.camera += 1;
         self.budget = MAX_SECONDARY_RAYS_PER_SAMPLE;
-        self.draws = self.rough_mirrors
-            || self
-                .scene
-                .lights
-                .iter()
-                .any(|l| self.options.light_plan(l).0 > 1);
         let c = self.radiance(ray, key);
         finite_radiance(c)
     }
@@ -550,9 +544,10 @@ impl<'a> Whitted<'a> {
     }
 
     /// Adds to `color` the diffuse and highlight terms of one light sample, of `share` of the
-    /// light (whose own primitives are `surface`), seen through the transmittance towards it (or `known`, where adaptive sampling
-    /// found it; `only` as for [`Whitted::transmittance`]). Nothing for a sample behind the side
-    /// of the surface we see: no shadow ray is traced for it.
+    /// light (whose own primitives are `surface`), seen through the transmittance towards it
+    /// (or `known`, where adaptive sampling found it; `only` as for
+    /// [`Whitted::transmittance`]). Nothing for a sample behind the side of the surface we see:
+    /// no shadow ray is traced for it.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn add_sample(

@@ -17,7 +17,7 @@ use crate::accel::kernels::Rays4;
 use crate::geometry::Shape;
 use crate::light::{Intensity, Light};
 use crate::material::highlight4;
-use crate::math::{sqrt4, Vec3};
+use crate::math::{dot4 as dot, splat4 as splat, sqrt4, Vec3};
 use crate::ray::{PreparedRay, Ray, SpawnPoints};
 use crate::sampling::PointSet;
 
@@ -70,17 +70,6 @@ pub(super) struct Shading<'s> {
     /// Whether there is a highlight (`ks > 0`), and its exponent.
     pub has_highlight: bool,
     pub exponent: f32,
-}
-
-/// `a · b` per lane, in [`Vec3::dot`]'s order.
-#[inline(always)]
-fn dot(a: &[Vec4; 3], b: &[Vec4; 3]) -> Vec4 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-#[inline(always)]
-fn splat(v: Vec3) -> [Vec4; 3] {
-    v.to_array().map(Vec4::splat)
 }
 
 #[inline(always)]
@@ -265,6 +254,7 @@ mod tests {
 
     use super::*;
     use crate::accel::{Accel, AccelKind};
+    use crate::integrator::TraceOptions;
     use crate::math::Vec2;
     use crate::sampling::SampleKey;
     use crate::scene::{load_str, LoadOptions};
@@ -322,8 +312,9 @@ mod tests {
         let scene = load_str(text, Path::new("lanes.json"), &LoadOptions::default()).unwrap();
         let accel = Accel::build(&scene.primitives, accel, 4);
         let interiors = super::super::interiors(&scene, &accel);
-        let mut lanes = Whitted::new(&scene, &accel, &interiors, 8);
-        let mut one = Whitted::new(&scene, &accel, &interiors, 8);
+        let options = TraceOptions::default();
+        let mut lanes = Whitted::new(&scene, &accel, &interiors, 8, options);
+        let mut one = Whitted::new(&scene, &accel, &interiors, 8, options);
         one.lanes = false;
         let (w, h) = (scene.camera.width, scene.camera.height);
         for y in 0..h {
