@@ -34,6 +34,11 @@
 //! - a shadow ray towards a light sample behind the side of the surface we see (`l · n ≤ 0`) is
 //!   never traced: that sample contributes nothing, whatever the visibility. Always on; it changes
 //!   no pixel.
+//! - a shadow ray towards a point light (any light of one shadow ray) whose terms at the point
+//!   are zeros, whatever the visibility, is not traced either: a mirror or glass of `kd = 0`
+//!   away from its highlight, where the power underflows to zero. Always on; it changes no
+//!   pixel. Under the cut-off below, terms too faint to matter go too ([`negligible`]: less than
+//!   `cutoff / 64` of radiance per level of the ray tree, all lights together).
 //! - [`TraceOptions::adaptive_lights`] (opt-in): before an area light's `n > 9` shadow rays, nine
 //!   probes towards a 3×3 grid over it (corners, edge midpoints, centre); if they all see the same
 //!   transmittance the light is taken to be uniformly visible (all `n` samples are shaded with
@@ -117,6 +122,59 @@ pub fn interiors(scene: &Scene, accel: &Accel) -> Interiors {
     Interiors::new(&scene.primitives, accel, |p| {
         scene.materials[p.material as usize].is_transmissive()
     })
+}
+
+/// The light terms a shading point leaves untraced under the cut-off are below
+/// `cutoff / LIGHT_CUT_FRACTION` of radiance, shared among the scene's lights (see
+/// [`negligible`]).
+const LIGHT_CUT_FRACTION: f32 = 64.0;
+
+/// Whether a light sample's terms, `diffuse · (n·l · e)` and `specular · (spec · e)` with
+/// `e = unblocked · visibility` (the visibility in `[0, 1]`), can be left out without tracing
+/// the shadow ray that finds the visibility:
+///
+/// - **exactly**, whatever `least`, where both terms are zeros for every visibility: the
+///   diffuse colour is zero and so is the highlight (or its colour). Adding them would leave the
+///   colour as it is. The common case is a mirror or glass (`kd = 0`) away from its highlight,
+///   where `spec` underflows to zero (`0.597^200` does). With `unblocked` finite, `e` is finite,
+///   and a product of zero with a finite number is a zero; a visibility below one only shrinks
+///   a product that already rounds to zero. An infinite or NaN `unblocked` always goes to the
+///   full computation.
+/// - **below the cut-off**, where the unblocked terms are below `least` (the light's
+///   [`Whitted::light_cut`]) in every channel. A pixel's sum then loses less than
+///   `cutoff / LIGHT_CUT_FRACTION` of radiance per level of its ray tree, all lights together
+///   (the weights of a level's shading points sum to at most one where `kr + kt ≤ 1`): with the
+///   default cut-off of 1/255 and `nbounces` up to 14, under a quarter of an 8-bit step.
+///   `least` is 0 without a cut-off (`--no-skip`), and only the exact case remains.
+#[inline(always)]
+fn negligible(
+    unblocked: f32,
+    n_dot_l: f32,
+    diffuse: Vec3,
+    spec: f32,
+    specular: Vec3,
+    least: f32,
+) -> bool {
+    let zero =
+        unblocked.is_finite() && diffuse == Vec3::ZERO && (spec == 0.0 || specular == Vec3::ZERO);
+    // NaN compares false: a NaN term is never cut.
+    zero || (least > 0.0
+        && ((diffuse * n_dot_l + specular * spec) * unblocked)
+            .abs()
+            .max_element()
+            < least)
+}
+
+/// A test that [`negligible`] may hold, from the diffuse term alone, before the highlight's
+/// half vector and power are worked out: where it fails, so does [`negligible`] (for
+/// non-negative colours, `n·l` and highlight, the diffuse term is a lower bound of the sum it
+/// compares), and the shadow ray is traced as it always was. `may_be_negligible4` in the lanes
+/// makes the same decisions.
+#[inline(always)]
+fn may_be_negligible(unblocked: f32, n_dot_l: f32, diffuse: Vec3, least: f32) -> bool {
+    unblocked.is_finite()
+        && (diffuse == Vec3::ZERO
+            || (least > 0.0 && (diffuse.abs().max_element() * n_dot_l * unblocked).abs() < least))
 }
 
 /// A reflection or refraction ray not yet traced, and the factor its radiance is scaled by in
@@ -227,6 +285,9 @@ pub struct Whitted<'a> {
     /// a rough mirror). Where none can, the branches' sample keys are never read and not
     /// derived.
     draws: bool,
+    /// What a light's unblocked terms at a shading point must reach to be traced and added
+    /// (see [`negligible`]): `cutoff / (LIGHT_CUT_FRACTION · lights)`, 0 without a cut-off.
+    light_cut: f32,
 }
 
 impl<'a> Whitted<'a> {
@@ -239,6 +300,9 @@ impl<'a> Whitted<'a> {
     ) -> Whitted<'a> {
         let draws = scene.materials.iter().any(|m| m.has_rough_mirror())
             || scene.lights.iter().any(|l| options.light_plan(l).0 > 1);
+        let light_cut = options.cutoff.map_or(0.0, |c| {
+            c / (LIGHT_CUT_FRACTION * scene.lights.len().max(1) as f32)
+        });
         Whitted {
             scene,
             accel,
@@ -254,6 +318,7 @@ impl<'a> Whitted<'a> {
             reachable: [Vec::new(), Vec::new()],
             lanes: true,
             draws,
+            light_cut,
         }
     }
 
@@ -406,8 +471,9 @@ impl<'a> Whitted<'a> {
                 }
                 let sample = light.sample_one(hit.point);
                 let surface = light.surface();
+                let cut = Some(self.light_cut);
                 self.add_sample(
-                    &mut color, &shading, light, &surface, &sample, 1.0, None, None,
+                    &mut color, &shading, light, &surface, &sample, 1.0, None, None, cut,
                 );
             } else if !self.area_light(&mut color, &shading, li, light, count, method, key) {
                 return color; // cancelled
@@ -534,7 +600,9 @@ impl<'a> Whitted<'a> {
                     return false;
                 }
                 let sample = light.sample(shading.point, points.point(s));
-                self.add_sample(color, shading, light, &surface, &sample, share, known, only);
+                self.add_sample(
+                    color, shading, light, &surface, &sample, share, known, only, None,
+                );
                 true
             }),
         };
@@ -547,7 +615,12 @@ impl<'a> Whitted<'a> {
     /// light (whose own primitives are `surface`), seen through the transmittance towards it
     /// (or `known`, where adaptive sampling found it; `only` as for
     /// [`Whitted::transmittance`]). Nothing for a sample behind the side of the surface we see:
-    /// no shadow ray is traced for it.
+    /// no shadow ray is traced for it. With `cut` (the least terms worth tracing, see
+    /// [`negligible`]), nothing either for a sample whose terms are negligible.
+    ///
+    /// Only single-sample lights are cut: an area light's samples are traced as before, since
+    /// testing them one by one (or four lanes at a time) cost `benches/peers/scenes` more
+    /// instructions than the shadow rays it saved there.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn add_sample(
@@ -560,12 +633,37 @@ impl<'a> Whitted<'a> {
         share: f32,
         known: Option<f32>,
         only: Option<[&[u32]; 2]>,
+        cut: Option<f32>,
     ) {
         let to_light = sample.position - shading.point;
         if to_light.dot(shading.n) <= 0.0 {
             return; // the light is behind the side we see: no shadow ray needed
         }
         let d2 = to_light.length_squared();
+        let intensity = light.intensity();
+        let l = to_light / d2.sqrt();
+        // The sample's terms as if nothing were in the way; the transmittance only scales them.
+        let unblocked = share * sample.weight * intensity.falloff(sample.falloff_d2);
+        let n_dot_l = shading.ns.dot(l).max(0.0);
+        let diffuse = shading.kd_base * intensity.diffuse;
+        let highlight_terms = || {
+            let h = (l + shading.v).normalize_or_zero();
+            let spec = highlight(shading.ns.dot(h).max(0.0), shading.exponent);
+            (shading.ks_specular * intensity.specular, spec)
+        };
+        let mut terms = None;
+        if let Some(least) = cut {
+            if may_be_negligible(unblocked, n_dot_l, diffuse, least) {
+                let (specular, spec) = if shading.has_highlight {
+                    *terms.insert(highlight_terms())
+                } else {
+                    (Vec3::ZERO, 0.0)
+                };
+                if negligible(unblocked, n_dot_l, diffuse, spec, specular, least) {
+                    return; // e.g. a mirror or glass away from its highlight: no shadow ray
+                }
+            }
+        }
         let visibility = match known {
             Some(v) => v,
             None => self.transmittance(shading.spawn, sample.position, surface, only),
@@ -573,15 +671,11 @@ impl<'a> Whitted<'a> {
         if visibility == 0.0 {
             return;
         }
-        let intensity = light.intensity();
-        let l = to_light / d2.sqrt();
-        let e = share * sample.weight * intensity.falloff(sample.falloff_d2) * visibility;
-        let n_dot_l = shading.ns.dot(l).max(0.0);
-        *color += shading.kd_base * intensity.diffuse * (n_dot_l * e);
+        let e = unblocked * visibility;
+        *color += diffuse * (n_dot_l * e);
         if shading.has_highlight {
-            let h = (l + shading.v).normalize_or_zero();
-            let spec = highlight(shading.ns.dot(h).max(0.0), shading.exponent);
-            *color += shading.ks_specular * intensity.specular * (spec * e);
+            let (specular, spec) = terms.unwrap_or_else(highlight_terms);
+            *color += specular * (spec * e);
         }
     }
 
@@ -701,5 +795,208 @@ impl<'a> Whitted<'a> {
             t_max = d * (1.0 - LIGHT_CLEARANCE);
         }
         0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::accel::AccelKind;
+    use crate::integrator::DEFAULT_CUTOFF;
+    use crate::scene::{load_str, LoadOptions};
+
+    /// A small random generator for the property test (xorshift64*).
+    struct Draw(u64);
+
+    impl Draw {
+        fn next(&mut self) -> f32 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
+        }
+
+        /// Zero a quarter of the time, else in `[0, 1)`.
+        fn often_zero(&mut self) -> f32 {
+            if self.next() < 0.25 {
+                0.0
+            } else {
+                self.next()
+            }
+        }
+
+        fn colour(&mut self) -> Vec3 {
+            if self.next() < 0.5 {
+                Vec3::ZERO
+            } else {
+                Vec3::new(self.often_zero(), self.next(), self.next())
+            }
+        }
+    }
+
+    /// Where [`negligible`] says so without a cut-off, both terms are zeros for every visibility,
+    /// computed as [`Whitted::add_sample`] computes them, so leaving them out keeps every bit of
+    /// the colour they would have been added to.
+    #[test]
+    fn negligible_terms_without_a_cutoff_are_exact_zeros() {
+        let mut d = Draw(0x9e37_79b9_7f4a_7c15);
+        let mut exact = 0;
+        for _ in 0..200_000 {
+            // Light strengths from far below one to far above, and the odd infinite one.
+            let unblocked = match (d.next() * 8.0) as u32 {
+                0 => f32::INFINITY,
+                1 => 1e-30 * d.next(),
+                2 => 1e30 * d.next(),
+                _ => d.next() * 100.0,
+            };
+            let n_dot_l = d.often_zero();
+            let spec = highlight(
+                d.often_zero(),
+                [1.0, 30.0, 200.0, 1000.0][(d.next() * 4.0) as usize],
+            );
+            let (diffuse, specular) = (d.colour(), d.colour());
+            for least in [0.0, 1e-4] {
+                if negligible(unblocked, n_dot_l, diffuse, spec, specular, least) {
+                    assert!(may_be_negligible(unblocked, n_dot_l, diffuse, least));
+                }
+            }
+            if !negligible(unblocked, n_dot_l, diffuse, spec, specular, 0.0) {
+                continue;
+            }
+            exact += 1;
+            let colour = Vec3::new(d.next(), 0.0, d.next() * 1e-3);
+            for visibility in [1.0, d.next(), 1e-3 * d.next(), 0.0] {
+                let e = unblocked * visibility;
+                let mut c = colour;
+                c += diffuse * (n_dot_l * e);
+                c += specular * (spec * e);
+                assert_eq!(
+                    c.to_array().map(f32::to_bits),
+                    colour.to_array().map(f32::to_bits),
+                    "unblocked {unblocked}, n·l {n_dot_l}, diffuse {diffuse}, spec {spec}, \
+                     specular {specular}, visibility {visibility}"
+                );
+            }
+        }
+        assert!(exact > 10_000, "{exact} negligible cases");
+        // Not negligible: infinite or NaN strengths, and any term above zero.
+        assert!(!negligible(
+            f32::INFINITY,
+            0.0,
+            Vec3::ZERO,
+            0.0,
+            Vec3::ZERO,
+            1.0
+        ));
+        assert!(!negligible(f32::NAN, 0.0, Vec3::ZERO, 0.0, Vec3::ZERO, 1.0));
+        assert!(!negligible(1.0, 1e-20, Vec3::ONE, 0.0, Vec3::ZERO, 0.0));
+        assert!(!negligible(1.0, 0.0, Vec3::ZERO, 1e-40, Vec3::ONE, 0.0));
+        // With a cut-off: below it in every channel, not in one.
+        assert!(negligible(
+            1.0,
+            0.5,
+            Vec3::splat(1e-3),
+            0.0,
+            Vec3::ONE,
+            1e-3
+        ));
+        assert!(!negligible(
+            1.0,
+            0.5,
+            Vec3::new(1e-3, 1e-2, 0.0),
+            0.0,
+            Vec3::ONE,
+            1e-3
+        ));
+    }
+
+    /// Mirror and glass spheres of `kd = 0` with sharp highlights, a diffuse one and a floor,
+    /// under a point light and a quad light.
+    const SCENE: &str = r#"{
+      "nbounces": 6,
+      "rendermode": "phong",
+      "camera": {"type": "pinhole", "width": 48, "height": 36, "fov": 50,
+                 "position": [0, 2.5, 6], "lookat": [0, -0.3, -1], "up": [0, 1, 0]},
+      "scene": {
+        "backgroundcolor": [0.3, 0.35, 0.45],
+        "lightsources": [
+          {"type": "pointlight", "position": [-3, 6, 5], "intensity": [0.9, 0.9, 0.9]},
+          {"type": "arealight", "v0": [1, 4, -1], "v1": [2, 4, -1], "v2": [2, 4, 0],
+           "v3": [1, 4, 0], "samples": 3, "method": "jittered",
+           "is": [0.4, 0.4, 0.4], "id": [0.4, 0.4, 0.4]}
+        ],
+        "shapes": [
+          {"type": "plane", "v0": [-6, 0, 6], "v1": [6, 0, 6], "v2": [6, 0, -6], "v3": [-6, 0, -6],
+           "material": {"kd": 0.8, "ks": 0.1, "specularexponent": 10,
+                        "diffusecolor": [0.9, 0.9, 0.9], "specularcolor": [1, 1, 1]}},
+          {"type": "sphere", "center": [-1.2, 0.8, 0], "radius": 0.8,
+           "material": {"kd": 0, "ks": 0.6, "specularexponent": 200,
+                        "diffusecolor": [1, 1, 1], "specularcolor": [1, 1, 1],
+                        "isrefractive": true, "refractiveindex": 1.5}},
+          {"type": "sphere", "center": [0.6, 0.8, -0.6], "radius": 0.8,
+           "material": {"kd": 0, "ks": 0.2, "specularexponent": 200,
+                        "diffusecolor": [1, 1, 1], "specularcolor": [1, 1, 1],
+                        "isreflective": true, "reflectivity": 1.0}},
+          {"type": "sphere", "center": [1.4, 0.4, 1.2], "radius": 0.4,
+           "material": {"kd": 0.7, "ks": 0.3, "specularexponent": 40,
+                        "diffusecolor": [0.8, 0.3, 0.2], "specularcolor": [1, 1, 1]}}
+        ]
+      }
+    }"#;
+
+    /// Every pixel's radiance (one sample at its centre) and the shadow rays traced, with the
+    /// cut-off `cutoff`, the lanes on or off, and the light cut as [`Whitted::new`] sets it or
+    /// (`light_cut: false`) at zero, where only exact zeros are left out.
+    fn render(cutoff: Option<f32>, lanes: bool, light_cut: bool) -> (Vec<Vec3>, u64) {
+        let scene = load_str(SCENE, Path::new("cut.json"), &LoadOptions::default()).unwrap();
+        let accel = Accel::build(&scene.primitives, AccelKind::Sah4, 4);
+        let interiors = interiors(&scene, &accel);
+        let options = TraceOptions {
+            cutoff,
+            ..Default::default()
+        };
+        let mut w = Whitted::new(&scene, &accel, &interiors, 8, options);
+        w.lanes = lanes;
+        if !light_cut {
+            w.light_cut = 0.0;
+        }
+        let (width, height) = (scene.camera.width, scene.camera.height);
+        let mut pixels = Vec::new();
+        for y in 0..height {
+            for x in 0..width {
+                let key = SampleKey::new(x, y, 0, 1, 7);
+                let ray = scene
+                    .camera
+                    .generate_ray(x, y, Vec2::splat(0.5), Vec2::splat(0.5));
+                pixels.push(w.trace_camera(&ray, &key));
+            }
+        }
+        (pixels, w.counts.shadow)
+    }
+
+    /// With the cut-off, light terms below it are left out: fewer shadow rays, and no pixel
+    /// further from the render that traces them than `(nbounces + 1) · cutoff / 64`, the bound
+    /// [`negligible`] states.
+    #[test]
+    fn the_light_cut_saves_shadow_rays_within_its_bound() {
+        let bound = 7.0 * DEFAULT_CUTOFF / LIGHT_CUT_FRACTION;
+        for lanes in [true, false] {
+            let (cut, cut_rays) = render(Some(DEFAULT_CUTOFF), lanes, true);
+            let (all, all_rays) = render(Some(DEFAULT_CUTOFF), lanes, false);
+            assert!(cut_rays < all_rays, "{cut_rays} of {all_rays} shadow rays");
+            let worst = cut
+                .iter()
+                .zip(&all)
+                .map(|(a, b)| (*a - *b).abs().max_element())
+                .fold(0.0f32, f32::max);
+            assert!(worst <= bound, "lanes {lanes}: {worst} > {bound}");
+        }
+        // Without a cut-off only exact zeros go, and the mirror and glass spheres away from
+        // their highlights still save shadow rays: fewer than with the cut, more than none.
+        let (_, exact_rays) = render(None, true, true);
+        let (_, cut_rays) = render(Some(DEFAULT_CUTOFF), true, true);
+        assert!(exact_rays > cut_rays);
     }
 }

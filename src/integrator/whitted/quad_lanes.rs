@@ -308,11 +308,14 @@ mod tests {
     }
 
     /// Every pixel's radiance with the lanes and with the one-sample loop, bit for bit.
-    fn lanes_equal_the_loop(text: &str, accel: AccelKind) -> u64 {
+    fn lanes_equal_the_loop(text: &str, accel: AccelKind, cutoff: Option<f32>) -> u64 {
         let scene = load_str(text, Path::new("lanes.json"), &LoadOptions::default()).unwrap();
         let accel = Accel::build(&scene.primitives, accel, 4);
         let interiors = super::super::interiors(&scene, &accel);
-        let options = TraceOptions::default();
+        let options = TraceOptions {
+            cutoff,
+            ..Default::default()
+        };
         let mut lanes = Whitted::new(&scene, &accel, &interiors, 8, options);
         let mut one = Whitted::new(&scene, &accel, &interiors, 8, options);
         one.lanes = false;
@@ -345,8 +348,10 @@ mod tests {
             (5, "jittered"),
         ] {
             for accel in [AccelKind::None, AccelKind::Sah4] {
-                let rays = lanes_equal_the_loop(&scene(samples, method), accel);
-                assert!(rays > 1000, "{rays} shadow rays");
+                for cutoff in [None, Some(crate::integrator::DEFAULT_CUTOFF)] {
+                    let rays = lanes_equal_the_loop(&scene(samples, method), accel, cutoff);
+                    assert!(rays > 1000, "{rays} shadow rays");
+                }
             }
         }
     }
