@@ -46,7 +46,9 @@ pub struct Camera {
     pub width: u32,
     pub height: u32,
     /// Full vertical field of view, radians.
-    pub fov_y: f32,
+    fov_y: f32,
+    /// `tan(fov_y / 2)`: half the image plane's height at unit distance.
+    tan_half_fov: f32,
     /// `None` for a pinhole.
     pub lens: Option<Lens>,
 }
@@ -80,15 +82,21 @@ impl Camera {
             width,
             height,
             fov_y: fov_y_degrees.to_radians(),
+            tan_half_fov: (0.5 * fov_y_degrees.to_radians()).tan(),
             lens,
         })
+    }
+
+    /// Full vertical field of view, radians.
+    pub fn fov_y(&self) -> f32 {
+        self.fov_y
     }
 
     /// The primary ray through image point `(x + film.x, y + film.y)` in pixel units (so
     /// `film = (0.5, 0.5)` is the centre of pixel `(x, y)`), with `lens_u ∈ [0,1)²` choosing the
     /// point on the aperture for a thin lens. Directions are unit length.
     pub fn generate_ray(&self, x: u32, y: u32, film: Vec2, lens_u: Vec2) -> Ray {
-        let tan = (0.5 * self.fov_y).tan();
+        let tan = self.tan_half_fov;
         let aspect = self.width as f32 / self.height as f32;
         let sx = (2.0 * (x as f32 + film.x) / self.width as f32 - 1.0) * tan * aspect;
         let sy = (1.0 - 2.0 * (y as f32 + film.y) / self.height as f32) * tan;

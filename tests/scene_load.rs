@@ -66,7 +66,7 @@ fn variants_are_told_apart_and_lookat_spellings_differ() {
 fn fov_is_vertical_and_hfov_horizontal() {
     let s = load_json(r#"{ "camera": { "width": 200, "height": 100, "hfov": 90 }, "scene": {} }"#);
     // tan(hfov/2) = aspect · tan(fov_y/2) → fov_y = 2·atan(1/2).
-    assert!((s.camera.fov_y - 2.0 * 0.5f32.atan()).abs() < 1e-5);
+    assert!((s.camera.fov_y() - 2.0 * 0.5f32.atan()).abs() < 1e-5);
 }
 
 #[test]
