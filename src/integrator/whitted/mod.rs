@@ -36,9 +36,11 @@
 //!   no pixel.
 //! - a shadow ray towards a point light (any light of one shadow ray) whose terms at the point
 //!   are zeros, whatever the visibility, is not traced either: a mirror or glass of `kd = 0`
-//!   away from its highlight, where the power underflows to zero. Always on; it changes no
-//!   pixel. Under the cut-off below, terms too faint to matter go too ([`negligible`]: less than
-//!   `cutoff / 64` of radiance per level of the ray tree, all lights together).
+//!   away from its highlight, where the power underflows to zero. Likewise a quad light none
+//!   of whose samples lights such a point gets no beam and no shadow ray
+//!   (`quad_highlight_may_show`). Always on; it changes no pixel. Under the cut-off below,
+//!   point lights' terms too faint to matter go too ([`negligible`]: less than `cutoff / 64`
+//!   of radiance per level of the ray tree, all lights together).
 //! - [`TraceOptions::adaptive_lights`] (opt-in): before an area light's `n > 9` shadow rays, nine
 //!   probes towards a 3×3 grid over it (corners, edge midpoints, centre); if they all see the same
 //!   transmittance the light is taken to be uniformly visible (all `n` samples are shaded with
@@ -558,6 +560,14 @@ impl<'a> Whitted<'a> {
         let spawn = shading.spawn;
         let share = 1.0 / count as f32;
         let points = key.stream(li as u64).point_set(method, 0, count);
+        let quad = Quad::of(light);
+        if let Some(quad) = &quad {
+            // A mirror or glass away from the light's highlight: every sample's terms are zeros.
+            let no_diffuse = shading.kd_base * light.intensity().diffuse == Vec3::ZERO;
+            if no_diffuse && !self.quad_highlight_may_show(shading, quad, &points, count, share) {
+                return true;
+            }
+        }
         let surface = light.surface();
         let known = if self.options.adaptive_lights && count > ADAPTIVE_PROBES.len() as u32 {
             self.uniform_visibility(shading, light, &surface)
@@ -591,7 +601,7 @@ impl<'a> Whitted<'a> {
                 }
                 [reachable[0].as_slice(), reachable[1].as_slice()]
             });
-        let done = match (Quad::of(light), known, self.lanes) {
+        let done = match (quad, known, self.lanes) {
             (Some(quad), None, true) => {
                 self.quad_light_lanes(color, shading, &quad, &points, count, share, &surface, only)
             }

@@ -77,6 +77,38 @@ fn lane(v: &[Vec4; 3], l: usize) -> Vec3 {
     Vec3::new(v[0][l], v[1][l], v[2][l])
 }
 
+/// `Light::sample` of a quad for samples `first..first + lanes` of `points`, in lanes: the
+/// targets of their shadow rays.
+#[inline(always)]
+fn targets(
+    points: &PointSet,
+    first: u32,
+    lanes: u32,
+    origin: [Vec4; 3],
+    edge_u: [Vec4; 3],
+    edge_v: [Vec4; 3],
+) -> [Vec4; 3] {
+    let mut ux = Vec4::ZERO;
+    let mut uy = Vec4::ZERO;
+    for l in 0..lanes as usize {
+        let u = points.point(first + l as u32);
+        ux[l] = u.x;
+        uy[l] = u.y;
+    }
+    [0, 1, 2].map(|a| origin[a] + ux * edge_u[a] + uy * edge_v[a])
+}
+
+/// The Blinn-Phong highlight `max(0, n·h)^exponent` of four unit directions `l_dir` towards the
+/// light, with `h = normalize_or_zero(l + v)`, lane by lane the bits of the one-sample loop.
+#[inline(always)]
+fn highlights(l_dir: &[Vec4; 3], ns: [Vec4; 3], v: [Vec4; 3], exponent: f32) -> Vec4 {
+    let h = [0, 1, 2].map(|a| l_dir[a] + v[a]);
+    let rcp = Vec4::ONE / sqrt4(dot(&h, &h));
+    let ok = rcp.abs().cmplt(Vec4::INFINITY) & rcp.cmpgt(Vec4::ZERO);
+    let h = h.map(|c| Vec4::select(ok, c * rcp, Vec4::ZERO));
+    highlight4(dot(&ns, &h).max(Vec4::ZERO), exponent)
+}
+
 impl Whitted<'_> {
     /// Adds to `color` the terms of samples `0..count` of `quad` (each of `share` of the light,
     /// `points` their points), as the one-sample loop does; `reachable` lists, per side the
@@ -108,15 +140,7 @@ impl Whitted<'_> {
                 return false;
             }
             let lanes = (count - first).min(4);
-            let mut ux = Vec4::ZERO;
-            let mut uy = Vec4::ZERO;
-            for l in 0..lanes as usize {
-                let u = points.point(first + l as u32);
-                ux[l] = u.x;
-                uy[l] = u.y;
-            }
-            // `Light::sample` of a quad, then the loop's `to_light` and its test.
-            let target = [0, 1, 2].map(|a| origin[a] + ux * edge_u[a] + uy * edge_v[a]);
+            let target = targets(points, first, lanes, origin, edge_u, edge_v);
             let to_light = [0, 1, 2].map(|a| target[a] - point[a]);
             let behind = dot(&to_light, &n).cmple(Vec4::ZERO).bitmask();
             let live = ((1u32 << lanes) - 1) & !behind;
@@ -129,11 +153,7 @@ impl Whitted<'_> {
             let l_dir = to_light.map(|c| c / sqrt4(d2));
             let n_dot_l = dot(&ns, &l_dir).max(Vec4::ZERO);
             let spec = if s.has_highlight {
-                let h = [0, 1, 2].map(|a| l_dir[a] + v[a]);
-                let rcp = Vec4::ONE / sqrt4(dot(&h, &h));
-                let ok = rcp.abs().cmplt(Vec4::INFINITY) & rcp.cmpgt(Vec4::ZERO);
-                let h = h.map(|c| Vec4::select(ok, c * rcp, Vec4::ZERO));
-                highlight4(dot(&ns, &h).max(Vec4::ZERO), s.exponent)
+                highlights(&l_dir, ns, v, s.exponent)
             } else {
                 Vec4::ZERO
             };
@@ -152,6 +172,45 @@ impl Whitted<'_> {
             }
         }
         true
+    }
+
+    /// Whether any of samples `0..count` of `quad` (each of `share` of the light) can add to the
+    /// colour of a shading point whose diffuse term is zero (`kd · base · id = 0`, a mirror or
+    /// glass): one in front of the surface whose highlight is not zero, or whose strength is not
+    /// finite. Where none can, every sample's terms are zeros whatever its visibility
+    /// ([`negligible`](super::negligible)'s exact case), and the light needs no shadow ray, beam
+    /// or probe. The arithmetic is the lanes' (and so the one-sample loop's), so the answer is
+    /// theirs to the bit.
+    pub(super) fn quad_highlight_may_show(
+        &self,
+        s: &Shading,
+        quad: &Quad,
+        points: &PointSet,
+        count: u32,
+        share: f32,
+    ) -> bool {
+        let (origin, edge_u, edge_v) = (splat(quad.origin), splat(quad.edge_u), splat(quad.edge_v));
+        let (point, n, ns, v) = (splat(s.point), splat(s.n), splat(s.ns), splat(s.v));
+        let specular = s.ks_specular * quad.intensity.specular;
+        if !s.has_highlight || specular == Vec3::ZERO {
+            return false;
+        }
+        (0..count).step_by(4).any(|first| {
+            let lanes = (count - first).min(4);
+            let target = targets(points, first, lanes, origin, edge_u, edge_v);
+            let to_light = [0, 1, 2].map(|a| target[a] - point[a]);
+            let behind = dot(&to_light, &n).cmple(Vec4::ZERO).bitmask();
+            let live = ((1u32 << lanes) - 1) & !behind;
+            if live == 0 {
+                return false;
+            }
+            let d2 = dot(&to_light, &to_light);
+            let l_dir = to_light.map(|c| c / sqrt4(d2));
+            let spec = highlights(&l_dir, ns, v, s.exponent);
+            let unblocked = Vec4::splat(share * 1.0) * quad.intensity.falloff4(d2);
+            let shows = spec.cmpne(Vec4::ZERO).bitmask() | !unblocked.is_finite_mask().bitmask();
+            live & shows != 0
+        })
     }
 
     /// [`Whitted::transmittance`] towards four targets (the lanes `live` of `target`), lane by
@@ -305,6 +364,90 @@ mod tests {
             clear = m(r#", "isrefractive": true, "refractiveindex": 1.0, "kt": 1.0"#),
             mirror = m(r#", "isreflective": true, "reflectivity": 0.8"#),
         )
+    }
+
+    /// `quad_highlight_may_show` answers what the one-sample loop's own terms say: whether some
+    /// sample in front of a mirror-like point (no diffuse term, a sharp highlight) has a highlight
+    /// that is not zero, on points all over a sphere seen from all around, near the light and
+    /// far from it.
+    #[test]
+    fn the_highlight_check_agrees_with_the_one_sample_terms() {
+        let text = scene(4, "jittered");
+        let scene = load_str(&text, Path::new("lanes.json"), &LoadOptions::default()).unwrap();
+        let accel = Accel::build(&scene.primitives, AccelKind::Sah4, 4);
+        let interiors = super::super::interiors(&scene, &accel);
+        let w = Whitted::new(&scene, &accel, &interiors, 8, TraceOptions::default());
+        let light = &scene.lights[0];
+        let quad = Quad::of(light).unwrap();
+        let (count, share) = (16, 1.0 / 16.0);
+        let (mut shows, mut dark) = (0, 0);
+        for k in 0..4000u32 {
+            // Points on a sphere under the light, normals outward, eyes on a wider sphere.
+            let f = |i: u32, m: f32| (i as f32 * m).fract();
+            let dir = |a: f32, b: f32| {
+                let (z, phi) = (2.0 * a - 1.0, std::f32::consts::TAU * b);
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                Vec3::new(r * phi.cos(), z, r * phi.sin())
+            };
+            let normal = dir(f(k, 0.618_034), f(k, 0.754_878));
+            let centre = Vec3::new(0.0, 1.0 + 1.5 * f(k, 0.569_84), 0.0);
+            let point = centre + 0.5 * normal;
+            let eye = centre + 4.0 * dir(f(k, 0.412_454), f(k, 0.245_122));
+            let v = (eye - point).normalize();
+            let hit = crate::ray::Hit {
+                t: 1.0,
+                point,
+                error: Vec3::ZERO,
+                normal,
+                shading_normal: normal,
+                uv: Vec2::ZERO,
+                prim: 0,
+            };
+            let spawn = hit.spawn_points();
+            let (n, ns) = if normal.dot(v) > 0.0 {
+                (normal, normal)
+            } else {
+                (-normal, -normal)
+            };
+            let shading = Shading {
+                point,
+                spawn: &spawn,
+                n,
+                ns,
+                v,
+                kd_base: Vec3::ZERO,
+                ks_specular: Vec3::splat(0.6),
+                has_highlight: true,
+                exponent: [200.0, 30.0, 1000.0][k as usize % 3],
+            };
+            let points = SampleKey::new(k, 0, 0, 1, 7).stream(0).point_set(
+                crate::sampling::Method::Jittered,
+                0,
+                count,
+            );
+            let check = w.quad_highlight_may_show(&shading, &quad, &points, count, share);
+            // The one-sample loop's terms, sample by sample.
+            let any = (0..count).any(|i| {
+                let sample = light.sample(point, points.point(i));
+                let to_light = sample.position - point;
+                if to_light.dot(n) <= 0.0 {
+                    return false;
+                }
+                let l = to_light / to_light.length_squared().sqrt();
+                let falloff = light.intensity().falloff(sample.falloff_d2);
+                let unblocked = share * sample.weight * falloff;
+                let h = (l + v).normalize_or_zero();
+                let spec = crate::material::highlight(ns.dot(h).max(0.0), shading.exponent);
+                spec != 0.0 || !unblocked.is_finite()
+            });
+            assert_eq!(check, any, "point {point}, eye {eye}");
+            if any {
+                shows += 1;
+            } else {
+                dark += 1;
+            }
+        }
+        assert!(shows > 200 && dark > 200, "{shows} showing, {dark} dark");
     }
 
     /// Every pixel's radiance with the lanes and with the one-sample loop, bit for bit.
