@@ -48,7 +48,8 @@ pub(crate) struct ImageFlags {
     #[arg(long)]
     pub adaptive_lights: bool,
     /// Skip reflection/refraction rays whose accumulated weight is below X (POV-Ray's
-    /// adc_bailout). Default: 1/255 = 0.0039, one 8-bit step (0 traces every ray).
+    /// adc_bailout), and point-light terms below X/64 of radiance. Default: 1/255 = 0.0039, one
+    /// 8-bit step (0 traces every ray).
     #[arg(long, value_name = "X", value_parser = values::unit_interval_f32)]
     pub adc_bailout: Option<f32>,
     /// Trace every ray the scene asks for: no --adc-bailout cut-off (the full-work render the
