@@ -98,6 +98,16 @@ fn targets(
     [0, 1, 2].map(|a| origin[a] + ux * edge_u[a] + uy * edge_v[a])
 }
 
+/// The directions from the shading point `point` to the four `target`s, and the mask of the
+/// first `lanes` of them in front of the surface of normal `n` (the one-sample loop's
+/// `to_light · n > 0`).
+#[inline(always)]
+fn in_front(target: &[Vec4; 3], lanes: u32, point: [Vec4; 3], n: [Vec4; 3]) -> ([Vec4; 3], u32) {
+    let to_light = [0, 1, 2].map(|a| target[a] - point[a]);
+    let behind = dot(&to_light, &n).cmple(Vec4::ZERO).bitmask();
+    (to_light, ((1u32 << lanes) - 1) & !behind)
+}
+
 /// The Blinn-Phong highlight `max(0, n·h)^exponent` of four unit directions `l_dir` towards the
 /// light, with `h = normalize_or_zero(l + v)`, lane by lane the bits of the one-sample loop.
 #[inline(always)]
@@ -141,9 +151,7 @@ impl Whitted<'_> {
             }
             let lanes = (count - first).min(4);
             let target = targets(points, first, lanes, origin, edge_u, edge_v);
-            let to_light = [0, 1, 2].map(|a| target[a] - point[a]);
-            let behind = dot(&to_light, &n).cmple(Vec4::ZERO).bitmask();
-            let live = ((1u32 << lanes) - 1) & !behind;
+            let (to_light, live) = in_front(&target, lanes, point, n);
             if live == 0 {
                 continue;
             }
@@ -198,9 +206,7 @@ impl Whitted<'_> {
         (0..count).step_by(4).any(|first| {
             let lanes = (count - first).min(4);
             let target = targets(points, first, lanes, origin, edge_u, edge_v);
-            let to_light = [0, 1, 2].map(|a| target[a] - point[a]);
-            let behind = dot(&to_light, &n).cmple(Vec4::ZERO).bitmask();
-            let live = ((1u32 << lanes) - 1) & !behind;
+            let (to_light, live) = in_front(&target, lanes, point, n);
             if live == 0 {
                 return false;
             }
