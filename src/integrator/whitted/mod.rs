@@ -972,18 +972,28 @@ mod tests {
         if !light_cut {
             w.light_cut = 0.0;
         }
-        let (width, height) = (scene.camera.width, scene.camera.height);
         let mut pixels = Vec::new();
-        for y in 0..height {
-            for x in 0..width {
+        for_each_pixel_centre(&scene, |_, _, key, ray| {
+            pixels.push(w.trace_camera(ray, key))
+        });
+        (pixels, w.counts.shadow)
+    }
+
+    /// Calls `f` with each pixel `(x, y)` of `scene`, row by row, its sample key (seed 7) and
+    /// the camera ray through its centre.
+    pub(super) fn for_each_pixel_centre(
+        scene: &Scene,
+        mut f: impl FnMut(u32, u32, &SampleKey, &Ray),
+    ) {
+        for y in 0..scene.camera.height {
+            for x in 0..scene.camera.width {
                 let key = SampleKey::new(x, y, 0, 1, 7);
                 let ray = scene
                     .camera
                     .generate_ray(x, y, Vec2::splat(0.5), Vec2::splat(0.5));
-                pixels.push(w.trace_camera(&ray, &key));
+                f(x, y, &key, &ray);
             }
         }
-        (pixels, w.counts.shadow)
     }
 
     /// With the cut-off, light terms below it are left out: fewer shadow rays, and no pixel

@@ -468,22 +468,15 @@ mod tests {
         let mut lanes = Whitted::new(&scene, &accel, &interiors, 8, options);
         let mut one = Whitted::new(&scene, &accel, &interiors, 8, options);
         one.lanes = false;
-        let (w, h) = (scene.camera.width, scene.camera.height);
-        for y in 0..h {
-            for x in 0..w {
-                let key = SampleKey::new(x, y, 0, 1, 7);
-                let ray = scene
-                    .camera
-                    .generate_ray(x, y, Vec2::splat(0.5), Vec2::splat(0.5));
-                let a = lanes.trace_camera(&ray, &key);
-                let b = one.trace_camera(&ray, &key);
-                assert_eq!(
-                    a.to_array().map(f32::to_bits),
-                    b.to_array().map(f32::to_bits),
-                    "pixel ({x}, {y}): lanes {a}, one at a time {b}"
-                );
-            }
-        }
+        super::super::tests::for_each_pixel_centre(&scene, |x, y, key, ray| {
+            let a = lanes.trace_camera(ray, key);
+            let b = one.trace_camera(ray, key);
+            assert_eq!(
+                a.to_array().map(f32::to_bits),
+                b.to_array().map(f32::to_bits),
+                "pixel ({x}, {y}): lanes {a}, one at a time {b}"
+            );
+        });
         assert_eq!(lanes.counts.shadow, one.counts.shadow);
         lanes.counts.shadow
     }
