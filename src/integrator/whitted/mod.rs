@@ -32,8 +32,9 @@
 //!
 //! Work a shading point does not need:
 //! - a shadow ray towards a light sample behind the side of the surface we see (`l · n ≤ 0`) is
-//!   never traced: that sample contributes nothing, whatever the visibility. Always on; it changes
-//!   no pixel.
+//!   never traced: that sample contributes nothing, whatever the visibility. A quad light wholly
+//!   behind (by a margin far above rounding) is not even sampled: no beam, no probes. Always on;
+//!   it changes no pixel.
 //! - a shadow ray towards a point light (any light of one shadow ray) whose terms at the point
 //!   are zeros, whatever the visibility, is not traced either: a mirror or glass of `kd = 0`
 //!   away from its highlight, where the power underflows to zero. Likewise a quad light none
@@ -562,6 +563,9 @@ impl<'a> Whitted<'a> {
         let points = key.stream(li as u64).point_set(method, 0, count);
         let quad = Quad::of(light);
         if let Some(quad) = &quad {
+            if quad.wholly_behind(shading.point, shading.n) {
+                return true; // every sample is behind the side we see
+            }
             // A mirror or glass away from the light's highlight: every sample's terms are zeros.
             let no_diffuse = shading.kd_base * light.intensity().diffuse == Vec3::ZERO;
             if no_diffuse && !self.quad_highlight_may_show(shading, quad, &points, count, share) {
