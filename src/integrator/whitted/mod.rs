@@ -40,7 +40,7 @@
 //!   away from its highlight, where the power underflows to zero. Likewise a quad light none
 //!   of whose samples lights such a point gets no beam and no shadow ray
 //!   (`quad_highlight_may_show`). Always on; it changes no pixel. Under the cut-off below,
-//!   point lights' terms too faint to matter go too ([`negligible`]: less than `cutoff / 64`
+//!   point lights' terms too faint to matter go too (`negligible`: less than `cutoff / 64`
 //!   of radiance per level of the ray tree, all lights together).
 //! - [`TraceOptions::adaptive_lights`] (opt-in): before an area light's `n > 9` shadow rays, nine
 //!   probes towards a 3×3 grid over it (corners, edge midpoints, centre); if they all see the same
@@ -171,8 +171,7 @@ fn negligible(
 /// A test that [`negligible`] may hold, from the diffuse term alone, before the highlight's
 /// half vector and power are worked out: where it fails, so does [`negligible`] (for
 /// non-negative colours, `n·l` and highlight, the diffuse term is a lower bound of the sum it
-/// compares), and the shadow ray is traced as it always was. `may_be_negligible4` in the lanes
-/// makes the same decisions.
+/// compares), and the shadow ray is traced as it always was.
 #[inline(always)]
 fn may_be_negligible(unblocked: f32, n_dot_l: f32, diffuse: Vec3, least: f32) -> bool {
     unblocked.is_finite()
