@@ -227,9 +227,7 @@ impl Whitted<'_> {
         let (origin, edge_u, edge_v) = (splat(quad.origin), splat(quad.edge_u), splat(quad.edge_v));
         let (point, n, ns, v) = (splat(s.point), splat(s.n), splat(s.ns), splat(s.v));
         let specular = s.ks_specular * quad.intensity.specular;
-        if !s.has_highlight || specular == Vec3::ZERO {
-            return false;
-        }
+        let lit = s.has_highlight && specular != Vec3::ZERO;
         (0..count).step_by(4).any(|first| {
             let lanes = (count - first).min(4);
             let target = targets(points, first, lanes, origin, edge_u, edge_v);
@@ -238,10 +236,13 @@ impl Whitted<'_> {
                 return false;
             }
             let d2 = dot(&to_light, &to_light);
-            let l_dir = to_light.map(|c| c / sqrt4(d2));
-            let spec = highlights(&l_dir, ns, v, s.exponent);
             let unblocked = Vec4::splat(share * 1.0) * quad.intensity.falloff4(d2);
-            let shows = spec.cmpne(Vec4::ZERO).bitmask() | !unblocked.is_finite_mask().bitmask();
+            let mut shows = !unblocked.is_finite_mask().bitmask();
+            if lit {
+                let l_dir = to_light.map(|c| c / sqrt4(d2));
+                let spec = highlights(&l_dir, ns, v, s.exponent);
+                shows |= spec.cmpne(Vec4::ZERO).bitmask();
+            }
             live & shows != 0
         })
     }
