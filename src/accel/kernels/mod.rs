@@ -20,9 +20,10 @@ pub use rays4::Rays4;
 pub use sphere4::Sphere4;
 pub use triangle4::Triangle4;
 
-/// What the kernels' tests share: a small generator, and the comparison with the scalar twin.
+/// What the kernels' tests share (and other tests borrow the generator): a small generator, and
+/// the comparison with the scalar twin.
 #[cfg(test)]
-mod twin {
+pub(crate) mod twin {
     use super::Hits4;
     use crate::geometry::{Candidate, Shape};
     use crate::math::Vec3;

@@ -39,7 +39,7 @@
 //!   are zeros, whatever the visibility, is not traced either: a mirror or glass of `kd = 0`
 //!   away from its highlight, where the power underflows to zero. Likewise a quad light none
 //!   of whose samples lights such a point gets no beam and no shadow ray
-//!   (`quad_highlight_may_show`). Always on; it changes no pixel. Under the cut-off below,
+//!   (`Quad::highlight_may_show`). Always on; it changes no pixel. Under the cut-off below,
 //!   point lights' terms too faint to matter go too (`negligible`: less than `cutoff / 64`
 //!   of radiance per level of the ray tree, all lights together).
 //! - [`TraceOptions::adaptive_lights`] (opt-in): before an area light's `n > 9` shadow rays, nine
@@ -567,7 +567,7 @@ impl<'a> Whitted<'a> {
             }
             // A mirror or glass away from the light's highlight: every sample's terms are zeros.
             let no_diffuse = shading.kd_base * light.intensity().diffuse == Vec3::ZERO;
-            if no_diffuse && !self.quad_highlight_may_show(shading, quad, &points, count, share) {
+            if no_diffuse && !quad.highlight_may_show(shading, &points, count, share) {
                 return true;
             }
         }
@@ -816,36 +816,26 @@ mod tests {
     use std::path::Path;
 
     use super::*;
+    use crate::accel::kernels::twin::Rng;
     use crate::accel::AccelKind;
     use crate::integrator::DEFAULT_CUTOFF;
     use crate::scene::{load_str, LoadOptions};
 
-    /// A small random generator for the property test (xorshift64*).
-    struct Draw(u64);
-
-    impl Draw {
-        fn next(&mut self) -> f32 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
+    /// Zero a quarter of the time, else in `[0, 1)`.
+    fn often_zero(d: &mut Rng) -> f32 {
+        if d.next() < 0.25 {
+            0.0
+        } else {
+            d.next()
         }
+    }
 
-        /// Zero a quarter of the time, else in `[0, 1)`.
-        fn often_zero(&mut self) -> f32 {
-            if self.next() < 0.25 {
-                0.0
-            } else {
-                self.next()
-            }
-        }
-
-        fn colour(&mut self) -> Vec3 {
-            if self.next() < 0.5 {
-                Vec3::ZERO
-            } else {
-                Vec3::new(self.often_zero(), self.next(), self.next())
-            }
+    /// Black half of the time, else a colour whose first channel is often zero.
+    fn colour(d: &mut Rng) -> Vec3 {
+        if d.next() < 0.5 {
+            Vec3::ZERO
+        } else {
+            Vec3::new(often_zero(d), d.next(), d.next())
         }
     }
 
@@ -854,7 +844,7 @@ mod tests {
     /// the colour they would have been added to.
     #[test]
     fn negligible_terms_without_a_cutoff_are_exact_zeros() {
-        let mut d = Draw(0x9e37_79b9_7f4a_7c15);
+        let mut d = Rng(0x9e37_79b9_7f4a_7c15);
         let mut exact = 0;
         for _ in 0..200_000 {
             // Light strengths from far below one to far above, and the odd infinite one.
@@ -864,12 +854,12 @@ mod tests {
                 2 => 1e30 * d.next(),
                 _ => d.next() * 100.0,
             };
-            let n_dot_l = d.often_zero();
+            let n_dot_l = often_zero(&mut d);
             let spec = highlight(
-                d.often_zero(),
+                often_zero(&mut d),
                 [1.0, 30.0, 200.0, 1000.0][(d.next() * 4.0) as usize],
             );
-            let (diffuse, specular) = (d.colour(), d.colour());
+            let (diffuse, specular) = (colour(&mut d), colour(&mut d));
             for least in [0.0, 1e-4] {
                 if negligible(unblocked, n_dot_l, diffuse, spec, specular, least) {
                     assert!(may_be_negligible(unblocked, n_dot_l, diffuse, least));

@@ -78,6 +78,43 @@ impl Quad<'_> {
             .iter()
             .all(|&c| (c - p).dot(n) < -margin)
     }
+
+    /// Whether any of samples `0..count` of the quad (each of `share` of the light) can add to the
+    /// colour of a shading point whose diffuse term is zero (`kd · base · id = 0`, a mirror or
+    /// glass): one in front of the surface whose highlight is not zero, or whose strength is not
+    /// finite. Where none can, every sample's terms are zeros whatever its visibility
+    /// ([`negligible`](super::negligible)'s exact case), and the light needs no shadow ray, beam
+    /// or probe. The arithmetic is the lanes' (and so the one-sample loop's), so the answer is
+    /// theirs to the bit.
+    pub fn highlight_may_show(
+        &self,
+        s: &Shading,
+        points: &PointSet,
+        count: u32,
+        share: f32,
+    ) -> bool {
+        let (origin, edge_u, edge_v) = (splat(self.origin), splat(self.edge_u), splat(self.edge_v));
+        let (point, n, ns, v) = (splat(s.point), splat(s.n), splat(s.ns), splat(s.v));
+        let specular = s.ks_specular * self.intensity.specular;
+        let lit = s.has_highlight && specular != Vec3::ZERO;
+        (0..count).step_by(4).any(|first| {
+            let lanes = (count - first).min(4);
+            let target = targets(points, first, lanes, origin, edge_u, edge_v);
+            let (to_light, live) = in_front(&target, lanes, point, n);
+            if live == 0 {
+                return false;
+            }
+            let d2 = dot(&to_light, &to_light);
+            let unblocked = Vec4::splat(share * 1.0) * self.intensity.falloff4(d2);
+            let mut shows = !unblocked.is_finite_mask().bitmask();
+            if lit {
+                let l_dir = to_light.map(|c| c / sqrt4(d2));
+                let spec = highlights(&l_dir, ns, v, s.exponent);
+                shows |= spec.cmpne(Vec4::ZERO).bitmask();
+            }
+            live & shows != 0
+        })
+    }
 }
 
 /// What the light terms of one shading point share.
@@ -207,44 +244,6 @@ impl Whitted<'_> {
             }
         }
         true
-    }
-
-    /// Whether any of samples `0..count` of `quad` (each of `share` of the light) can add to the
-    /// colour of a shading point whose diffuse term is zero (`kd · base · id = 0`, a mirror or
-    /// glass): one in front of the surface whose highlight is not zero, or whose strength is not
-    /// finite. Where none can, every sample's terms are zeros whatever its visibility
-    /// ([`negligible`](super::negligible)'s exact case), and the light needs no shadow ray, beam
-    /// or probe. The arithmetic is the lanes' (and so the one-sample loop's), so the answer is
-    /// theirs to the bit.
-    pub(super) fn quad_highlight_may_show(
-        &self,
-        s: &Shading,
-        quad: &Quad,
-        points: &PointSet,
-        count: u32,
-        share: f32,
-    ) -> bool {
-        let (origin, edge_u, edge_v) = (splat(quad.origin), splat(quad.edge_u), splat(quad.edge_v));
-        let (point, n, ns, v) = (splat(s.point), splat(s.n), splat(s.ns), splat(s.v));
-        let specular = s.ks_specular * quad.intensity.specular;
-        let lit = s.has_highlight && specular != Vec3::ZERO;
-        (0..count).step_by(4).any(|first| {
-            let lanes = (count - first).min(4);
-            let target = targets(points, first, lanes, origin, edge_u, edge_v);
-            let (to_light, live) = in_front(&target, lanes, point, n);
-            if live == 0 {
-                return false;
-            }
-            let d2 = dot(&to_light, &to_light);
-            let unblocked = Vec4::splat(share * 1.0) * quad.intensity.falloff4(d2);
-            let mut shows = !unblocked.is_finite_mask().bitmask();
-            if lit {
-                let l_dir = to_light.map(|c| c / sqrt4(d2));
-                let spec = highlights(&l_dir, ns, v, s.exponent);
-                shows |= spec.cmpne(Vec4::ZERO).bitmask();
-            }
-            live & shows != 0
-        })
     }
 
     /// [`Whitted::transmittance`] towards four targets (the lanes `live` of `target`), lane by
@@ -400,7 +399,7 @@ mod tests {
         )
     }
 
-    /// `quad_highlight_may_show` answers what the one-sample loop's own terms say: whether some
+    /// `Quad::highlight_may_show` answers what the one-sample loop's own terms say: whether some
     /// sample in front of a mirror-like point (no diffuse term, a sharp highlight) has a highlight
     /// that is not zero, on points all over a sphere seen from all around, near the light and
     /// far from it.
@@ -408,9 +407,6 @@ mod tests {
     fn the_highlight_check_agrees_with_the_one_sample_terms() {
         let text = scene(4, "jittered");
         let scene = load_str(&text, Path::new("lanes.json"), &LoadOptions::default()).unwrap();
-        let accel = Accel::build(&scene.primitives, AccelKind::Sah4, 4);
-        let interiors = super::super::interiors(&scene, &accel);
-        let w = Whitted::new(&scene, &accel, &interiors, 8, TraceOptions::default());
         let light = &scene.lights[0];
         let quad = Quad::of(light).unwrap();
         let (count, share) = (16, 1.0 / 16.0);
@@ -459,7 +455,7 @@ mod tests {
                 0,
                 count,
             );
-            let check = w.quad_highlight_may_show(&shading, &quad, &points, count, share);
+            let check = quad.highlight_may_show(&shading, &points, count, share);
             // The one-sample loop's terms, sample by sample.
             let any = (0..count).any(|i| {
                 let sample = light.sample(point, points.point(i));
