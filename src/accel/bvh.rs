@@ -547,7 +547,7 @@ impl BinaryTree {
 }
 
 impl Bvh {
-    /// Builds a tree over `prims`. Fewer than `u32::MAX` primitives (the caller checks).
+    /// Builds a tree over `prims`. At most `leaves::MAX_PRIMITIVES` primitives (the caller checks).
     pub fn build(prims: &[Primitive], options: BvhOptions) -> Bvh {
         let BinaryTree {
             nodes,
@@ -839,7 +839,6 @@ impl Tree for Bvh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::accel::leaves::PAD;
     use crate::geometry::{Shape, Sphere, Triangle};
     use crate::math::Vec3;
 
@@ -884,7 +883,7 @@ mod tests {
     /// every box containing its contents, depth within the stack.
     fn check(bvh: &Bvh, prims: &[Primitive], leaf_size: usize) {
         let mut seen = vec![false; prims.len()];
-        for &p in bvh.leaves.order.iter().filter(|&&p| p != PAD) {
+        for p in bvh.leaves.all() {
             assert!(!seen[p as usize], "primitive {p} twice");
             assert!(prims[p as usize].shape.is_bounded());
             seen[p as usize] = true;

@@ -1,19 +1,26 @@
-//! The leaves of the BVHs ([`super::Bvh`], [`super::Bvh4`]): primitive indices laid out leaf by
-//! leaf (`order`), each leaf's triangles, then its spheres, then its other primitives, each kind
-//! starting at a multiple of four. Every four entries of `order` are one [`Block`]: triangles and
-//! spheres copied into structure-of-arrays blocks ([`Triangle4`], [`Sphere4`]) and tested four at
-//! a time in SIMD lanes, with the bits of the scalar tests, and other shapes tested one by one.
+//! The leaves of the BVHs ([`super::Bvh`], [`super::Bvh4`]): blocks of four entries, leaf by
+//! leaf, each leaf's triangles, then its spheres, then its other primitives, each kind starting
+//! a new [`Block`]. A block holds its primitives' indices and, for triangles and spheres, their
+//! shapes in structure-of-arrays form ([`Triangle4`], [`Sphere4`]), tested four at a time in SIMD
+//! lanes with the bits of the scalar tests; other shapes are tested one by one.
 //!
 //! A leaf is a span of entries `start..start + count` with `start` a multiple of four. The trees
 //! differ only in their nodes; how a leaf answers a query is here, once.
 
-use super::kernels::{Hits4, Ray4, Sphere4, Triangle4};
+use super::kernels::{Hits4, Ray4, Rows, Sphere4, Triangle4};
 use crate::geometry::{Candidate, Primitive, Shape};
 use crate::math::next_float_up;
 use crate::ray::PreparedRay;
 
-/// The entries of `order` that hold no primitive.
+/// An entry that holds no primitive.
 pub(super) const PAD: u32 = u32::MAX;
+
+/// Where an entry keeps its block's kind: the bits from here up. Primitive indices are below
+/// [`MAX_PRIMITIVES`].
+const KIND_SHIFT: u32 = 30;
+
+/// The most primitives a tree can hold (the bits above them name their block's kind).
+pub(super) const MAX_PRIMITIVES: usize = 1 << KIND_SHIFT;
 
 /// The closest hit so far.
 pub(super) struct Best {
@@ -65,29 +72,61 @@ impl Best {
     }
 }
 
-/// Four entries of `order`, as a leaf tests them.
-#[derive(Debug, Clone, Copy)]
-enum Block {
-    Triangles(Triangle4),
-    Spheres(Sphere4),
-    /// Other shapes, tested one by one: bit `l` of `lanes` is set where entry `l` holds one.
-    Scalar {
-        lanes: u32,
-    },
+/// Four entries of a leaf, 160 bytes: their primitives, each tagged with the block's [`Kind`],
+/// and their shapes as the block's kernel reads them (unused in a [`Kind::Other`] block).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C, align(16))]
+struct Block {
+    /// `index | kind << KIND_SHIFT` for each lane, or [`PAD`] (always after the lanes in use).
+    entries: [u32; 4],
+    shapes: Rows,
 }
 
+const _: () = assert!(std::mem::size_of::<Block>() == 160);
+
 impl Block {
+    /// A block with no entry.
+    const EMPTY: Block = Block {
+        entries: [PAD; 4],
+        shapes: [[glam::Vec4::ZERO; 3]; 3],
+    };
+
+    fn new(kind: Kind, shapes: Rows, indices: &[u32]) -> Block {
+        let entries = std::array::from_fn(|l| match indices[l] {
+            PAD => PAD,
+            p => p | (kind as u32) << KIND_SHIFT,
+        });
+        Block { entries, shapes }
+    }
+
+    /// The primitive of lane `l` (a lane in use).
+    #[inline(always)]
+    fn primitive(&self, l: usize) -> u32 {
+        self.entries[l] & ((1 << KIND_SHIFT) - 1)
+    }
+
+    /// The primitives of the block.
+    fn primitives(&self) -> impl Iterator<Item = u32> + '_ {
+        (0..4)
+            .filter(|&l| self.entries[l] != PAD)
+            .map(|l| self.primitive(l))
+    }
+
     /// What the lanes hit with `t < t_max`; [`Hits4::scalar`] also holds every lane the scalar
     /// test must decide.
     #[inline(always)]
     fn intersect(&self, r4: &Ray4, t_max: f32) -> Hits4 {
-        match self {
-            Block::Triangles(b) => b.intersect(r4, t_max),
-            Block::Spheres(b) => b.intersect(r4, t_max),
-            Block::Scalar { lanes } => Hits4 {
-                scalar: *lanes,
+        const TRIANGLE: u32 = Kind::Triangle as u32;
+        const SPHERE: u32 = Kind::Sphere as u32;
+        const OTHER: u32 = Kind::Other as u32;
+        match self.entries[0] >> KIND_SHIFT {
+            TRIANGLE => Triangle4::from_rows(&self.shapes).intersect(r4, t_max),
+            SPHERE => Sphere4::from_rows(&self.shapes).intersect(r4, t_max),
+            OTHER => Hits4 {
+                scalar: (0..4).fold(0, |m, l| m | ((self.entries[l] != PAD) as u32) << l),
                 ..Hits4::NONE
             },
+            _ => Hits4::NONE,
         }
     }
 }
@@ -107,9 +146,9 @@ pub(super) fn lanes(mut mask: u32) -> impl Iterator<Item = usize> {
 /// The kinds of primitive a leaf keeps apart, in their order there.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Kind {
-    Triangle,
-    Sphere,
-    Other,
+    Triangle = 0,
+    Sphere = 1,
+    Other = 2,
 }
 
 fn kind(p: &Primitive) -> Kind {
@@ -123,10 +162,7 @@ fn kind(p: &Primitive) -> Kind {
 /// Every leaf of a tree, in blocks.
 #[derive(Debug, Clone)]
 pub(super) struct Leaves {
-    /// Primitive indices, leaf by leaf; the entries that pad a kind to a multiple of four are
-    /// [`PAD`].
-    pub order: Vec<u32>,
-    /// Block `j` holds the primitives of entries `4j..4j + 4` of `order`.
+    /// Entries `4j..4j + 4` are block `j`.
     blocks: Vec<Block>,
 }
 
@@ -138,60 +174,74 @@ impl Leaves {
         order: &[u32],
         spans: impl Iterator<Item = (&'a mut u32, &'a mut u32)>,
     ) -> Leaves {
-        let mut packed = Vec::with_capacity(order.len());
-        for (start, count) in spans {
-            // `packed` stays a multiple of four long between kinds and between leaves.
-            let leaf = &order[*start as usize..][..*count as usize];
-            *start = packed.len() as u32;
-            for k in [Kind::Triangle, Kind::Sphere, Kind::Other] {
-                packed.extend(leaf.iter().filter(|&&p| kind(&prims[p as usize]) == k));
-                packed.resize(packed.len().next_multiple_of(4), PAD);
-            }
-            *count = packed.len() as u32 - *start;
-        }
-        let blocks = packed
-            .chunks_exact(4)
-            .map(|c| {
-                let shape = |l: usize| (c[l] != PAD).then(|| &prims[c[l] as usize].shape);
-                let lanes = [0, 1, 2, 3].map(shape);
-                if lanes.iter().any(|s| matches!(s, Some(Shape::Triangle(_)))) {
-                    Block::Triangles(Triangle4::new(lanes.map(|s| match s {
-                        Some(Shape::Triangle(t)) => Some(t),
-                        _ => None,
-                    })))
-                } else if lanes.iter().any(|s| matches!(s, Some(Shape::Sphere(_)))) {
-                    Block::Spheres(Sphere4::new(lanes.map(|s| match s {
-                        Some(Shape::Sphere(s)) => Some(s),
-                        _ => None,
-                    })))
-                } else {
-                    let lanes = (0..4).filter(|&l| c[l] != PAD).fold(0, |m, l| m | 1 << l);
-                    Block::Scalar { lanes }
-                }
+        debug_assert!(prims.len() <= MAX_PRIMITIVES);
+        let spans: Vec<_> = spans.collect();
+        let kinds = [Kind::Triangle, Kind::Sphere, Kind::Other];
+        let of_kind = |leaf: &[u32], k| {
+            leaf.iter()
+                .filter(|&&p| kind(&prims[p as usize]) == k)
+                .count()
+        };
+        let total = spans
+            .iter()
+            .map(|(start, count)| {
+                let leaf = &order[**start as usize..][..**count as usize];
+                kinds
+                    .map(|k| of_kind(leaf, k).div_ceil(4))
+                    .iter()
+                    .sum::<usize>()
             })
-            .collect();
-        Leaves {
-            order: packed,
-            blocks,
+            .sum();
+        let mut blocks = Vec::with_capacity(total);
+        let mut lanes = Vec::with_capacity(4);
+        for (start, count) in spans {
+            let leaf = &order[*start as usize..][..*count as usize];
+            *start = 4 * blocks.len() as u32;
+            for k in kinds {
+                let mut of_kind = leaf.iter().filter(|&&p| kind(&prims[p as usize]) == k);
+                loop {
+                    lanes.clear();
+                    lanes.extend(of_kind.by_ref().take(4));
+                    if lanes.is_empty() {
+                        break;
+                    }
+                    let shape = |l: usize| lanes.get(l).map(|&p| &prims[p as usize].shape);
+                    let shapes = match k {
+                        Kind::Triangle => Triangle4::new(std::array::from_fn(|l| match shape(l) {
+                            Some(Shape::Triangle(t)) => Some(t),
+                            _ => None,
+                        }))
+                        .rows(),
+                        Kind::Sphere => Sphere4::new(std::array::from_fn(|l| match shape(l) {
+                            Some(Shape::Sphere(s)) => Some(s),
+                            _ => None,
+                        }))
+                        .rows(),
+                        Kind::Other => Block::EMPTY.shapes,
+                    };
+                    lanes.resize(4, PAD);
+                    blocks.push(Block::new(k, shapes, &lanes));
+                }
+            }
+            *count = 4 * blocks.len() as u32 - *start;
         }
+        debug_assert_eq!(blocks.len(), total);
+        Leaves { blocks }
     }
 
     /// Appends a leaf of one block that holds nothing and returns its span: what a tree points an
     /// unused child slot at, so that even a ray whose box tests all pass (a NaN direction) finds
     /// a valid, empty leaf there.
     pub fn push_empty(&mut self) -> (u32, u32) {
-        let start = self.order.len() as u32;
-        self.order.reserve_exact(4);
-        self.order.extend([PAD; 4]);
+        let start = 4 * self.blocks.len() as u32;
         self.blocks.reserve_exact(1);
-        self.blocks.push(Block::Scalar { lanes: 0 });
+        self.blocks.push(Block::EMPTY);
         (start, 4)
     }
 
-    /// Bytes held: the primitive order and the blocks.
+    /// Bytes held.
     pub fn bytes(&self) -> usize {
         self.blocks.capacity() * std::mem::size_of::<Block>()
-            + self.order.capacity() * std::mem::size_of::<u32>()
     }
 
     /// The blocks of the leaf at `start..start + count` (`start` a multiple of four).
@@ -203,11 +253,13 @@ impl Leaves {
 
     /// The primitives of the leaf at `start..start + count`.
     pub fn primitives(&self, start: u32, count: u32) -> impl Iterator<Item = u32> + '_ {
-        let start = start as usize;
-        self.order[start..start + count as usize]
-            .iter()
-            .copied()
-            .filter(|&p| p != PAD)
+        self.blocks(start, count).iter().flat_map(Block::primitives)
+    }
+
+    /// Every primitive of every leaf, leaf by leaf.
+    #[cfg(test)]
+    pub fn all(&self) -> impl Iterator<Item = u32> + '_ {
+        self.blocks.iter().flat_map(Block::primitives)
     }
 
     /// Tests the primitives of the leaf at `start..start + count` for a closer hit than `best`. A
@@ -233,12 +285,11 @@ impl Leaves {
                 best.t
             }
         };
-        for (j, block) in self.blocks(start, count).iter().enumerate() {
-            let base = start as usize + 4 * j;
+        for block in self.blocks(start, count) {
             let h = block.intersect(r4, next_float_up(best.t));
             let scalar = h.scalar;
             for l in lanes(h.hit | scalar) {
-                let p = self.order[base + l];
+                let p = block.primitive(l);
                 let b = bound(p, best);
                 let c = if scalar & (1 << l) != 0 {
                     prims[p as usize].shape.intersect_prepared(r, b)
@@ -268,12 +319,11 @@ impl Leaves {
         t_max: f32,
         blocks: &mut impl FnMut(u32) -> bool,
     ) -> bool {
-        for (j, block) in self.blocks(start, count).iter().enumerate() {
-            let base = start as usize + 4 * j;
+        for block in self.blocks(start, count) {
             let h = block.intersect(r4, t_max);
             let scalar = h.scalar;
             for l in lanes(h.hit | scalar) {
-                let p = self.order[base + l];
+                let p = block.primitive(l);
                 let hit = scalar & (1 << l) == 0
                     || prims[p as usize]
                         .shape

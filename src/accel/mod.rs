@@ -131,8 +131,8 @@ impl Accel {
     /// Builds the accelerator `kind` over `prims`; `leaf_size` is the most primitives in a BVH
     /// leaf.
     pub fn build(prims: &[Primitive], kind: AccelKind, leaf_size: usize) -> Accel {
-        // BVH entries are u32 primitive indices, with u32::MAX reserved.
-        if prims.len() >= u32::MAX as usize {
+        // A leaf entry keeps its block's kind above the primitive's index.
+        if prims.len() > leaves::MAX_PRIMITIVES {
             return Accel::List;
         }
         match kind.resolved() {

@@ -203,7 +203,7 @@ fn collapse<const C: usize>(
 
 impl<const C: usize> WideBvh<C> {
     /// Builds the binary SAH tree over `prims` with leaves of at most `leaf_size` primitives and
-    /// collapses it. Fewer than `u32::MAX` primitives (the caller checks).
+    /// collapses it. At most `leaves::MAX_PRIMITIVES` primitives (the caller checks).
     pub fn build(prims: &[Primitive], leaf_size: usize) -> WideBvh<C> {
         let BinaryTree {
             nodes: binary,

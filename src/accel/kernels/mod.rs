@@ -20,6 +20,13 @@ pub use rays4::Rays4;
 pub use sphere4::Sphere4;
 pub use triangle4::Triangle4;
 
+use glam::Vec4;
+
+/// Nine rows of four lanes: what a leaf block stores for the kernel that tests it (a
+/// [`Triangle4`]'s corners, a [`Sphere4`]'s centres and radii), so that blocks of either kind
+/// have one size and need no tag of their own.
+pub type Rows = [[Vec4; 3]; 3];
+
 /// What the kernels' tests share (and other tests borrow the generator): a small generator, and
 /// the comparison with the scalar twin.
 #[cfg(test)]

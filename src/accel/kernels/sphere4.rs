@@ -1,47 +1,60 @@
 //! Four spheres against one ray: [`Sphere::intersect`] and the box clamp of
 //! [`Shape::intersect_prepared`](crate::geometry::Shape::intersect_prepared), operation for
-//! operation (see [`super`] for why the bits agree). No lane is left to the scalar test.
+//! operation (see [`super`] for why the bits agree). No lane is left to the scalar test. An empty
+//! lane has a NaN radius, which no test accepts.
 
 use glam::Vec4;
 
 use super::ray4::{mask, sphere_root, Hits4, Ray4};
+use super::Rows;
 use crate::geometry::Sphere;
 
 /// Up to four spheres in structure-of-arrays form.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[repr(C, align(16))]
 pub struct Sphere4 {
     center: [Vec4; 3],
+    /// NaN in an empty lane.
     radius: Vec4,
-    /// Bit `l` is set where lane `l` holds a sphere.
-    lanes: u32,
 }
 
 impl Sphere4 {
     /// The block holding `spheres` in their lanes (`None` lanes are empty).
     pub fn new(spheres: [Option<&Sphere>; 4]) -> Sphere4 {
         let mut center = [Vec4::ZERO; 3];
-        let mut radius = Vec4::ZERO;
-        let mut lanes = 0;
+        let mut radius = Vec4::NAN;
         for (l, s) in spheres.iter().enumerate() {
             let Some(s) = s else { continue };
-            lanes |= 1 << l;
             for (a, c) in center.iter_mut().enumerate() {
                 c[l] = s.center[a];
             }
             radius[l] = s.radius;
         }
+        Sphere4 { center, radius }
+    }
+
+    /// The block as a leaf stores it: the centres in the first row, the radii first in the
+    /// second.
+    #[inline(always)]
+    pub fn rows(&self) -> Rows {
+        [
+            self.center,
+            [self.radius, Vec4::ZERO, Vec4::ZERO],
+            [Vec4::ZERO; 3],
+        ]
+    }
+
+    /// The block a leaf stored with [`Sphere4::rows`].
+    #[inline(always)]
+    pub fn from_rows(rows: &Rows) -> Sphere4 {
         Sphere4 {
-            center,
-            radius,
-            lanes,
+            center: rows[0],
+            radius: rows[1][0],
         }
     }
 
     /// Bit `l` set where lane `l` holds a sphere.
-    #[inline(always)]
     pub fn lanes(&self) -> u32 {
-        self.lanes
+        mask(self.radius.is_nan_mask()) ^ 0b1111
     }
 
     /// Every lane's `Shape::intersect_prepared` with bound `t_max` (`scalar` is always empty).
@@ -57,7 +70,7 @@ impl Sphere4 {
         let perp = [f[0] + s * dx, f[1] + s * dy, f[2] + s * dz];
         let disc = a * (r2 - (perp[0] * perp[0] + perp[1] * perp[1] + perp[2] * perp[2]));
         // `disc < 0` and NaN both fail `disc >= 0`.
-        let mut live = self.lanes & mask(disc.cmpge(zero) & self.radius.cmpgt(zero));
+        let mut live = mask(disc.cmpge(zero) & self.radius.cmpgt(zero));
         if live == 0 {
             return Hits4::NONE;
         }

@@ -7,53 +7,63 @@
 //! is exactly zero (a ray through an edge or a vertex), is left to the scalar test: such lanes
 //! come back in [`Hits4::scalar`].
 //!
+//! An empty lane holds NaN corners: its edge functions are NaN, never zero, so it is neither hit
+//! nor handed to the scalar test, and no lane mask is kept.
+//!
 //! The unit tests compare every lane with [`Triangle::intersect_prepared`] bit for bit on random,
 //! edge-aimed, vertex-aimed, axis-parallel and degenerate cases.
 
 use glam::Vec4;
 
 use super::ray4::{mask, Hits4, Ray4};
+use super::Rows;
 use crate::geometry::Triangle;
 use crate::math::gamma;
 
 /// Up to four triangles in structure-of-arrays form.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[repr(C, align(16))]
 pub struct Triangle4 {
-    /// `p[corner][axis]`: one lane per triangle.
-    p: [[Vec4; 3]; 3],
-    /// Bit `l` is set where lane `l` holds a triangle.
-    lanes: u32,
+    /// `p[corner][axis]`: one lane per triangle, NaN in an empty lane.
+    p: Rows,
 }
 
 impl Triangle4 {
-    /// The block holding `tris` in lanes `0..tris.len()` (at most four; `None` lanes are empty).
+    /// The block holding `tris` in their lanes (`None` lanes are empty).
     pub fn new(tris: [Option<&Triangle>; 4]) -> Triangle4 {
-        let mut p = [[Vec4::ZERO; 3]; 3];
-        let mut lanes = 0;
+        let mut p = [[Vec4::NAN; 3]; 3];
         for (l, t) in tris.iter().enumerate() {
             let Some(t) = t else { continue };
-            lanes |= 1 << l;
             for (c, corner) in t.p.iter().enumerate() {
                 for a in 0..3 {
                     p[c][a][l] = corner[a];
                 }
             }
         }
-        Triangle4 { p, lanes }
+        Triangle4 { p }
+    }
+
+    /// The block as a leaf stores it.
+    #[inline(always)]
+    pub fn rows(&self) -> Rows {
+        self.p
+    }
+
+    /// The block a leaf stored with [`Triangle4::rows`].
+    #[inline(always)]
+    pub fn from_rows(p: &Rows) -> Triangle4 {
+        Triangle4 { p: *p }
     }
 
     /// Bit `l` set where lane `l` holds a triangle.
-    #[inline(always)]
     pub fn lanes(&self) -> u32 {
-        self.lanes
+        mask(self.p[0][0].is_nan_mask()) ^ 0b1111
     }
 
     /// Every lane's [`Shape::intersect_prepared`](crate::geometry::Shape::intersect_prepared) with bound
     /// `t_max`, but for the lanes returned in [`Hits4::scalar`].
     #[inline(always)]
     pub fn intersect(&self, r: &Ray4, t_max: f32) -> Hits4 {
-        if !r.shear_ok || self.lanes == 0 {
+        if !r.shear_ok {
             return Hits4::NONE;
         }
         let [kx, ky, kz] = r.axes;
@@ -71,10 +81,10 @@ impl Triangle4 {
         let e1 = x2 * y0 - y2 * x0;
         let e2 = x0 * y1 - y0 * x1;
         let zero = Vec4::ZERO;
-        let scalar = mask(e0.cmpeq(zero) | e1.cmpeq(zero) | e2.cmpeq(zero)) & self.lanes;
+        let scalar = mask(e0.cmpeq(zero) | e1.cmpeq(zero) | e2.cmpeq(zero));
         let negative = e0.cmplt(zero) | e1.cmplt(zero) | e2.cmplt(zero);
         let positive = e0.cmpgt(zero) | e1.cmpgt(zero) | e2.cmpgt(zero);
-        let mut live = self.lanes & !scalar & !mask(negative & positive);
+        let mut live = !scalar & !mask(negative & positive) & 0b1111;
         let det = e0 + e1 + e2;
         live &= mask(det.cmpne(zero) & det.abs().cmplt(Vec4::INFINITY));
         if live == 0 {
