@@ -17,6 +17,10 @@
 //! Primitive indices are reordered so that each leaf's are contiguous, in blocks of four tested in
 //! SIMD lanes (`accel/leaves.rs`).
 //!
+//! Both builders split the nodes of at least [`PARALLEL_MIN`] primitives and build their two
+//! subtrees as two `rayon` tasks, then lay the parts out where the one-thread recursion puts
+//! them: the tree is the same, node for node, on any number of threads.
+//!
 //! Unbounded primitives (infinite planes, see [`crate::geometry::Shape::is_bounded`]) have no box
 //! to put in a node: they are kept out of the tree in a list of their own (`unbounded`), which
 //! every query tests first. A closest-hit query then starts from their best hit, so the tree is
