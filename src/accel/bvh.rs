@@ -229,6 +229,24 @@ struct Ref {
 }
 
 impl Ref {
+    /// The bounded primitives of `prims`, in index order (whatever the threads: rayon's
+    /// `collect` keeps it).
+    fn bounded(prims: &[Primitive]) -> Vec<Ref> {
+        prims
+            .par_iter()
+            .enumerate()
+            .filter(|(_, p)| p.shape.is_bounded())
+            .map(|(i, p)| {
+                let b = p.shape.bounds();
+                Ref {
+                    lo: b.min.into(),
+                    hi: b.max.into(),
+                    index: i as u32,
+                }
+            })
+            .collect()
+    }
+
     #[inline(always)]
     fn centroid(&self) -> Vec3A {
         0.5 * (self.lo + self.hi)
@@ -623,20 +641,7 @@ impl BinaryTree {
             .filter(|(_, p)| !p.shape.is_bounded())
             .map(|(i, _)| i as u32)
             .collect();
-        // In index order, whatever the threads (rayon's `collect` keeps it).
-        let mut refs: Vec<Ref> = prims
-            .par_iter()
-            .enumerate()
-            .filter(|(_, p)| p.shape.is_bounded())
-            .map(|(i, p)| {
-                let b = p.shape.bounds();
-                Ref {
-                    lo: b.min.into(),
-                    hi: b.max.into(),
-                    index: i as u32,
-                }
-            })
-            .collect();
+        let mut refs = Ref::bounded(prims);
         let leaf_size = options.leaf_size.max(1);
         let mut nodes = Vec::with_capacity(2 * prims.len() / leaf_size.min(4) + 1);
         if !refs.is_empty() {
@@ -1048,18 +1053,7 @@ mod tests {
     /// The tree the plain recursion builds over `prims`, with no part built side by side: its
     /// nodes and the primitives' order.
     fn serial_tree(prims: &[Primitive], leaf_size: usize, split: Split) -> (Vec<Node>, Vec<u32>) {
-        let mut refs: Vec<Ref> = prims
-            .iter()
-            .enumerate()
-            .map(|(i, p)| {
-                let b = p.shape.bounds();
-                Ref {
-                    lo: b.min.into(),
-                    hi: b.max.into(),
-                    index: i as u32,
-                }
-            })
-            .collect();
+        let mut refs = Ref::bounded(prims);
         let mut builder = Builder::new(leaf_size, split);
         builder.nodes.push(Node::default());
         let b = Bounds::of(&refs);
