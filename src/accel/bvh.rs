@@ -223,12 +223,28 @@ pub struct Bvh {
 /// A primitive's bounds during the build, with its index.
 #[derive(Debug, Clone, Copy)]
 struct Ref {
-    lo: Vec3A,
-    hi: Vec3A,
-    index: u32,
+    /// The box's lower corner, and in `w` the primitive's index (as bits, see [`Ref::new`]): 32
+    /// bytes a primitive, not 48, for the passes over every primitive at each level.
+    lo_index: Vec4,
+    hi: Vec4,
 }
 
+const _: () = assert!(std::mem::size_of::<Ref>() == 32);
+
 impl Ref {
+    /// Bit 30 of the `w` lane's bits is set above the index (below `leaves::MAX_PRIMITIVES`, 2³⁰),
+    /// so the lane is never a subnormal float: the box arithmetic, which carries `w` along
+    /// unread, would slow down on one.
+    const INDEX_TAG: u32 = 1 << 30;
+
+    fn new(lo: Vec3A, hi: Vec3A, index: u32) -> Ref {
+        debug_assert!(index < Ref::INDEX_TAG);
+        Ref {
+            lo_index: lo.extend(f32::from_bits(index | Ref::INDEX_TAG)),
+            hi: hi.extend(0.0),
+        }
+    }
+
     /// The bounded primitives of `prims`, in index order (whatever the threads: rayon's
     /// `collect` keeps it).
     fn bounded(prims: &[Primitive]) -> Vec<Ref> {
@@ -238,18 +254,29 @@ impl Ref {
             .filter(|(_, p)| p.shape.is_bounded())
             .map(|(i, p)| {
                 let b = p.shape.bounds();
-                Ref {
-                    lo: b.min.into(),
-                    hi: b.max.into(),
-                    index: i as u32,
-                }
+                Ref::new(b.min.into(), b.max.into(), i as u32)
             })
             .collect()
     }
 
     #[inline(always)]
+    fn lo(&self) -> Vec3A {
+        Vec3A::from_vec4(self.lo_index)
+    }
+
+    #[inline(always)]
+    fn hi(&self) -> Vec3A {
+        Vec3A::from_vec4(self.hi)
+    }
+
+    #[inline(always)]
+    fn index(&self) -> u32 {
+        self.lo_index.w.to_bits() & !Ref::INDEX_TAG
+    }
+
+    #[inline(always)]
     fn centroid(&self) -> Vec3A {
-        0.5 * (self.lo + self.hi)
+        0.5 * (self.lo() + self.hi())
     }
 }
 
@@ -294,8 +321,8 @@ impl Bounds {
 
     #[inline(always)]
     fn add(&mut self, r: &Ref) {
-        self.lo = self.lo.min(r.lo);
-        self.hi = self.hi.max(r.hi);
+        self.lo = self.lo.min(r.lo());
+        self.hi = self.hi.max(r.hi());
         let c = r.centroid();
         self.clo = self.clo.min(c);
         self.chi = self.chi.max(c);
@@ -515,8 +542,8 @@ impl Builder {
             let idx = bin(r);
             for (a, &i) in idx.iter().enumerate() {
                 let bin = &mut self.bins[a][i & (SAH_BINS - 1)];
-                bin.lo = bin.lo.min(r.lo);
-                bin.hi = bin.hi.max(r.hi);
+                bin.lo = bin.lo.min(r.lo());
+                bin.hi = bin.hi.max(r.hi());
                 bin.count += 1;
             }
         }
@@ -618,7 +645,7 @@ fn median_split(refs: &mut [Ref], axis: usize) -> usize {
     refs.select_nth_unstable_by(mid, |a, b| {
         a.centroid()[axis]
             .total_cmp(&b.centroid()[axis])
-            .then(a.index.cmp(&b.index))
+            .then(a.index().cmp(&b.index()))
     });
     mid
 }
@@ -650,7 +677,7 @@ impl BinaryTree {
             nodes.push(Node::default());
             root.place(0, &mut nodes);
         }
-        let order: Vec<u32> = refs.iter().map(|r| r.index).collect();
+        let order: Vec<u32> = refs.iter().map(Ref::index).collect();
         let leaves = Leaves::pack(
             prims,
             &order,
@@ -1058,7 +1085,7 @@ mod tests {
         builder.nodes.push(Node::default());
         let b = Bounds::of(&refs);
         builder.node(0, &mut refs, 0, 0, b);
-        (builder.nodes, refs.iter().map(|r| r.index).collect())
+        (builder.nodes, refs.iter().map(Ref::index).collect())
     }
 
     #[test]
