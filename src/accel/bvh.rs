@@ -754,7 +754,7 @@ impl Bvh {
         usize::from(self.root.is_some()) + 2 * self.pairs.len()
     }
 
-    /// Bytes held: the nodes, the leaves (primitive order and blocks) and the unbounded list.
+    /// Bytes held: the nodes, the leaves' blocks and the unbounded list.
     pub fn memory_bytes(&self) -> usize {
         std::mem::size_of::<Bvh>()
             + self.node_bytes()
@@ -767,7 +767,7 @@ impl Bvh {
         self.pairs.capacity() * std::mem::size_of::<NodePair>()
     }
 
-    /// Bytes of the leaves: the primitive order and the SIMD blocks.
+    /// Bytes of the leaves: their SIMD blocks (primitive indices included).
     pub fn leaf_bytes(&self) -> usize {
         self.leaves.bytes()
     }

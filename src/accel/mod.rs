@@ -145,7 +145,7 @@ impl Accel {
         }
     }
 
-    /// Bytes the accelerator holds beyond the primitives (nodes, primitive order, leaf blocks).
+    /// Bytes the accelerator holds beyond the primitives (nodes and leaf blocks).
     pub fn memory_bytes(&self) -> usize {
         match self {
             Accel::List => 0,
@@ -155,7 +155,7 @@ impl Accel {
         }
     }
 
-    /// Of [`Accel::memory_bytes`], the bytes of the leaves (primitive order and leaf blocks).
+    /// Of [`Accel::memory_bytes`], the bytes of the leaves (their blocks).
     pub fn leaf_bytes(&self) -> usize {
         match self {
             Accel::List => 0,

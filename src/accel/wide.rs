@@ -239,7 +239,7 @@ impl<const C: usize> WideBvh<C> {
         }
     }
 
-    /// Bytes held: the nodes, the leaves (primitive order and blocks) and the unbounded list.
+    /// Bytes held: the nodes, the leaves' blocks and the unbounded list.
     pub fn memory_bytes(&self) -> usize {
         std::mem::size_of::<WideBvh<C>>()
             + self.node_bytes()
@@ -252,7 +252,7 @@ impl<const C: usize> WideBvh<C> {
         self.nodes.capacity() * std::mem::size_of::<Node<C>>()
     }
 
-    /// Bytes of the leaves: the primitive order and the SIMD blocks.
+    /// Bytes of the leaves: their SIMD blocks (primitive indices included).
     pub fn leaf_bytes(&self) -> usize {
         self.leaves.bytes()
     }

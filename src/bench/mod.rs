@@ -790,7 +790,7 @@ pub struct TreeThroughput {
     pub kind: AccelKind,
     pub build: Duration,
     pub accel_bytes: usize,
-    /// Of `accel_bytes`, the leaves' (primitive order and SIMD blocks).
+    /// Of `accel_bytes`, the leaves' blocks.
     pub leaf_bytes: usize,
     pub nodes: usize,
     pub depth: usize,
