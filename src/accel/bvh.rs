@@ -113,6 +113,16 @@ pub(super) struct Node {
 }
 
 impl Node {
+    /// The leaf over entries `first..first + count` of the order, with bounds `b`.
+    fn leaf(b: &Bounds, first: usize, count: usize) -> Node {
+        Node {
+            lo: b.lo,
+            hi: b.hi,
+            index: first as u32,
+            count: count as u32,
+        }
+    }
+
     /// The node with its children, if it has any, `pairs` sibling pairs further on.
     fn shifted(&self, pairs: u32) -> Node {
         Node {
@@ -352,6 +362,17 @@ struct Builder {
     bins: [[Bin; SAH_BINS]; 3],
 }
 
+/// Makes the node at `slot` interior: appends its sibling pair (slot 0 is the root; pair `k` is
+/// slots `1 + 2k` and `2 + 2k`) and points the node at it. Returns the pair's first slot.
+fn push_pair(nodes: &mut Vec<Node>, slot: usize) -> usize {
+    let child = nodes.len();
+    nodes.push(Node::default());
+    nodes.push(Node::default());
+    nodes[slot].index = (child as u32 - 1) / 2;
+    nodes[slot].count = 0;
+    child
+}
+
 /// A subtree built by [`Builder::part`]: split at its root into two parts built side by side, or
 /// built whole by [`Builder::node`] (its root first, then its sibling pairs in the order the
 /// serial build appends them).
@@ -376,15 +397,9 @@ impl Part {
                 left,
                 right,
             } => {
-                let child = nodes.len();
-                nodes.push(Node::default());
-                nodes.push(Node::default());
-                nodes[slot] = Node {
-                    lo,
-                    hi,
-                    index: (child as u32 - 1) / 2,
-                    count: 0,
-                };
+                nodes[slot].lo = lo;
+                nodes[slot].hi = hi;
+                let child = push_pair(nodes, slot);
                 left.place(child, nodes);
                 right.place(child + 1, nodes);
             }
@@ -412,17 +427,13 @@ impl Builder {
     /// The subtree over `refs` (whose first entry is entry `first` of the final order, and whose
     /// bounds are `b`), its large parts built side by side.
     fn part(&mut self, refs: &mut [Ref], first: usize, depth: usize, b: Bounds) -> Part {
-        let n = refs.len();
-        let split = if n >= PARALLEL_MIN {
-            self.split(refs, depth, &b)
-        } else {
-            None
-        };
-        let Some((mid, left_bounds, right_bounds)) = split else {
-            self.nodes.clear();
-            self.nodes.push(Node::default());
+        if refs.len() < PARALLEL_MIN {
+            self.nodes = vec![Node::default()];
             self.node(0, refs, first, depth, b);
             return Part::Whole(std::mem::take(&mut self.nodes));
+        }
+        let Some((mid, left_bounds, right_bounds)) = self.split(refs, depth, &b) else {
+            return Part::Whole(vec![Node::leaf(&b, first, refs.len())]);
         };
         let (left, right) = refs.split_at_mut(mid);
         let (leaf_size, split) = (self.leaf_size, self.split);
@@ -441,22 +452,11 @@ impl Builder {
     /// Builds the subtree over `refs` (whose first entry is entry `first` of the final order, and
     /// whose bounds are `b`) into the node at `slot`.
     fn node(&mut self, slot: usize, refs: &mut [Ref], first: usize, depth: usize, b: Bounds) {
-        let n = refs.len();
-        self.nodes[slot] = Node {
-            lo: b.lo,
-            hi: b.hi,
-            index: first as u32,
-            count: n as u32,
-        };
+        self.nodes[slot] = Node::leaf(&b, first, refs.len());
         let Some((mid, left_bounds, right_bounds)) = self.split(refs, depth, &b) else {
             return;
         };
-        // Slot 0 is the root; pair k is slots 1 + 2k and 2 + 2k.
-        let child = self.nodes.len();
-        self.nodes.push(Node::default());
-        self.nodes.push(Node::default());
-        self.nodes[slot].index = (child as u32 - 1) / 2;
-        self.nodes[slot].count = 0;
+        let child = push_pair(&mut self.nodes, slot);
         let (left, right) = refs.split_at_mut(mid);
         self.node(child, left, first, depth + 1, left_bounds);
         self.node(child + 1, right, first + mid, depth + 1, right_bounds);

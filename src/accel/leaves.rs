@@ -159,6 +159,13 @@ fn kind(p: &Primitive) -> Kind {
     }
 }
 
+/// The primitives of `leaf` of kind `k`, in their order there.
+fn of_kind<'a>(prims: &'a [Primitive], leaf: &'a [u32], k: Kind) -> impl Iterator<Item = u32> + 'a {
+    leaf.iter()
+        .copied()
+        .filter(move |&p| kind(&prims[p as usize]) == k)
+}
+
 /// Every leaf of a tree, in blocks.
 #[derive(Debug, Clone)]
 pub(super) struct Leaves {
@@ -177,17 +184,12 @@ impl Leaves {
         debug_assert!(prims.len() <= MAX_PRIMITIVES);
         let spans: Vec<_> = spans.collect();
         let kinds = [Kind::Triangle, Kind::Sphere, Kind::Other];
-        let of_kind = |leaf: &[u32], k| {
-            leaf.iter()
-                .filter(|&&p| kind(&prims[p as usize]) == k)
-                .count()
-        };
         let total = spans
             .iter()
             .map(|(start, count)| {
                 let leaf = &order[**start as usize..][..**count as usize];
                 kinds
-                    .map(|k| of_kind(leaf, k).div_ceil(4))
+                    .map(|k| of_kind(prims, leaf, k).count().div_ceil(4))
                     .iter()
                     .sum::<usize>()
             })
@@ -198,7 +200,7 @@ impl Leaves {
             let leaf = &order[*start as usize..][..*count as usize];
             *start = 4 * blocks.len() as u32;
             for k in kinds {
-                let mut of_kind = leaf.iter().filter(|&&p| kind(&prims[p as usize]) == k);
+                let mut of_kind = of_kind(prims, leaf, k);
                 loop {
                     lanes.clear();
                     lanes.extend(of_kind.by_ref().take(4));
