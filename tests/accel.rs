@@ -6,8 +6,10 @@
 //! empty scenes, single primitives, degenerate triangles and duplicated primitives (where the
 //! lower primitive index wins a tie in `t`), and with infinite planes, which no tree holds.
 
-use raytracer::accel::{Accel, AccelKind, Bvh, Bvh4};
-use raytracer::geometry::{Candidate, Cylinder, Plane, Primitive, Shape, Sphere, Triangle};
+use raytracer::accel::{Accel, AccelKind, Bvh, Bvh4, Reachable};
+use raytracer::geometry::{
+    Candidate, Cylinder, Mesh, MeshUv, Plane, Primitive, Primitives, Shape, Sphere, Triangle,
+};
 use raytracer::math::{next_float_up, Vec3};
 use raytracer::ray::Ray;
 use raytracer::sampling::{hash, to_unit, uniform_sphere};
@@ -104,7 +106,7 @@ fn mixed_scene(n: usize, seed: u64) -> Vec<Primitive> {
     }
     // Duplicates of earlier primitives (the earlier, lower index must win every tie).
     for k in 0..n / 5 {
-        let p = prims[(k * 37) % n].clone();
+        let p = prims[(k * 37) % n];
         prims.push(p);
     }
     prims
@@ -112,17 +114,13 @@ fn mixed_scene(n: usize, seed: u64) -> Vec<Primitive> {
 
 /// A `g×g` grid of UV spheres of `s×s` quads (two triangles each, degenerate at the poles) on a
 /// ground quad: the benchmark scene's layout, small.
-fn mesh_scene(g: u32, s: u32) -> Vec<Primitive> {
+fn mesh_scene(g: u32, s: u32) -> Primitives {
     let gf = g as f32;
     let ground = [
         Vec3::new(-gf, 0.0, -gf),
         Vec3::new(gf, 0.0, -gf),
         Vec3::new(gf, 0.0, gf),
         Vec3::new(-gf, 0.0, gf),
-    ];
-    let mut prims = vec![
-        tri(ground[0], ground[1], ground[2]),
-        tri(ground[0], ground[2], ground[3]),
     ];
     let point = |c: Vec3, a: u32, b: u32| {
         let theta = std::f32::consts::PI * a as f32 / s as f32;
@@ -134,6 +132,7 @@ fn mesh_scene(g: u32, s: u32) -> Vec<Primitive> {
                 theta.sin() * phi.sin(),
             )
     };
+    let mut balls = Vec::new();
     for i in 0..g {
         for j in 0..g {
             let c = Vec3::new(i as f32 - gf / 2.0 + 0.5, 0.45, j as f32 - gf / 2.0 + 0.5);
@@ -141,16 +140,29 @@ fn mesh_scene(g: u32, s: u32) -> Vec<Primitive> {
                 for b in 0..s {
                     let (p00, p10) = (point(c, a, b), point(c, a + 1, b));
                     let (p11, p01) = (point(c, a + 1, b + 1), point(c, a, b + 1));
-                    prims.push(tri(p00, p10, p11));
-                    prims.push(tri(p00, p11, p01));
+                    balls.extend([p00, p10, p11, p00, p11, p01]);
                 }
             }
         }
     }
+    // Two meshes, stored both ways: the ground's two faces as records, the balls' faces as a
+    // run (as a large mesh's are), whose triangles are made from the mesh when asked for.
+    let mesh = |positions: Vec<Vec3>, faces| Mesh {
+        positions,
+        normals: None,
+        uv: MeshUv::Strip,
+        faces,
+    };
+    let faces = (0..balls.len() as u32 / 3)
+        .map(|f| [3 * f, 3 * f + 1, 3 * f + 2])
+        .collect();
+    let mut prims = Primitives::default();
+    prims.push_mesh(mesh(ground.to_vec(), vec![[0, 1, 2], [0, 2, 3]]), 0);
+    prims.push_faces(mesh(balls, faces), 0);
     prims
 }
 
-fn triangles(prims: &[Primitive]) -> Vec<[Vec3; 3]> {
+fn triangles(prims: &Primitives) -> Vec<[Vec3; 3]> {
     prims
         .iter()
         .filter_map(|p| match &p.shape {
@@ -161,7 +173,7 @@ fn triangles(prims: &[Primitive]) -> Vec<[Vec3; 3]> {
 }
 
 /// The bounded primitives' box, at least [−1, 1]³.
-fn bounds(prims: &[Primitive]) -> (Vec3, Vec3) {
+fn bounds(prims: &Primitives) -> (Vec3, Vec3) {
     prims.iter().filter(|p| p.shape.is_bounded()).fold(
         (Vec3::splat(-1.0), Vec3::splat(1.0)),
         |(lo, hi), p| {
@@ -172,7 +184,7 @@ fn bounds(prims: &[Primitive]) -> (Vec3, Vec3) {
 }
 
 /// Rays of every kind for a scene.
-fn rays(prims: &[Primitive], count: usize, seed: u64) -> Vec<Ray> {
+fn rays(prims: &Primitives, count: usize, seed: u64) -> Vec<Ray> {
     let mut rng = Rng(seed << 40);
     let tris = triangles(prims);
     let (lo, hi) = bounds(prims);
@@ -264,7 +276,7 @@ fn key(h: Option<(u32, Candidate)>) -> Closest {
 }
 
 /// Every accelerator under test for `prims`.
-fn accelerators(prims: &[Primitive]) -> Vec<(String, Accel)> {
+fn accelerators(prims: &Primitives) -> Vec<(String, Accel)> {
     let mut v = vec![
         ("auto".to_string(), Accel::build(prims, AccelKind::Auto, 4)),
         (
@@ -293,7 +305,7 @@ fn accelerators(prims: &[Primitive]) -> Vec<(String, Accel)> {
 
 /// Checks every accelerator against the list on `rays` with several `t_max`; returns the number
 /// of rays.
-fn check_scene(name: &str, prims: &[Primitive], rays: &[Ray]) -> usize {
+fn check_scene(name: &str, prims: &Primitives, rays: &[Ray]) -> usize {
     let list = Accel::List;
     let accels = accelerators(prims);
     let blocks_some = |p: u32| p % 3 != 1;
@@ -337,7 +349,7 @@ fn check_scene(name: &str, prims: &[Primitive], rays: &[Ray]) -> usize {
             }
         }
     }
-    let hittable = prims.iter().any(|p| match &p.shape {
+    let hittable = prims.iter().any(|p| match p.shape {
         Shape::Triangle(t) => (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]) != Vec3::ZERO,
         _ => true,
     });
@@ -357,25 +369,25 @@ fn every_builder_matches_brute_force() {
     let mesh = mesh_scene(2, 8);
     assert_eq!(mesh.len(), 514);
     total += check_scene("sphere grid", &mesh, &rays(&mesh, 40_000, 1));
-    let mixed = mixed_scene(200, 2);
+    let mixed = Primitives::from(mixed_scene(200, 2));
     total += check_scene("mixed", &mixed, &rays(&mixed, 40_000, 2));
-    let mixed_small = mixed_scene(20, 3);
+    let mixed_small = Primitives::from(mixed_scene(20, 3));
     total += check_scene("mixed small", &mixed_small, &rays(&mixed_small, 8_000, 3));
     // Few primitives: nothing, one of each kind, two coincident.
-    let empty: Vec<Primitive> = Vec::new();
+    let empty = Primitives::default();
     total += check_scene("empty", &empty, &rays(&empty, 1_000, 4));
-    let one_tri = vec![tri(Vec3::ZERO, Vec3::X, Vec3::Y)];
+    let one_tri = Primitives::from(vec![tri(Vec3::ZERO, Vec3::X, Vec3::Y)]);
     total += check_scene("one triangle", &one_tri, &rays(&one_tri, 4_000, 5));
-    let one_sphere = vec![sphere(Vec3::ONE, 0.5)];
+    let one_sphere = Primitives::from(vec![sphere(Vec3::ONE, 0.5)]);
     total += check_scene("one sphere", &one_sphere, &rays(&one_sphere, 1_000, 6));
-    let one_cyl = vec![cylinder(Vec3::ZERO, Vec3::Z, 0.5, 1.0)];
+    let one_cyl = Primitives::from(vec![cylinder(Vec3::ZERO, Vec3::Z, 0.5, 1.0)]);
     total += check_scene("one cylinder", &one_cyl, &rays(&one_cyl, 1_000, 7));
-    let twins = vec![
+    let twins = Primitives::from(vec![
         tri(Vec3::ZERO, Vec3::X, Vec3::Y),
         tri(Vec3::ZERO, Vec3::X, Vec3::Y),
-    ];
+    ]);
     total += check_scene("two coincident", &twins, &rays(&twins, 4_000, 8));
-    let points = vec![tri(Vec3::ONE, Vec3::ONE, Vec3::ONE); 9];
+    let points = Primitives::from(vec![tri(Vec3::ONE, Vec3::ONE, Vec3::ONE); 9]);
     total += check_scene("degenerate only", &points, &rays(&points, 1_000, 9));
     assert!(total >= 100_000, "only {total} rays");
 }
@@ -390,15 +402,19 @@ fn planes_outside_the_trees_keep_the_contract() {
     mixed.insert(120, plane(Vec3::X, -3.0));
     mixed.push(plane(Vec3::Y, 0.0));
     mixed.push(plane(Vec3::new(0.0, -1.0, 1.0), 1.0e4));
+    let mixed = Primitives::from(mixed);
     let n = check_scene("mixed with planes", &mixed, &rays(&mixed, 30_000, 14));
     // Planes alone (the tree is empty) and one plane under one sphere (a list under `auto`).
-    let planes = vec![
+    let planes = Primitives::from(vec![
         plane(Vec3::Z, 1.0),
         plane(Vec3::Z, 1.0),
         plane(Vec3::ONE, -2.0),
-    ];
+    ]);
     let m = check_scene("planes only", &planes, &rays(&planes, 4_000, 15));
-    let floor = vec![sphere(Vec3::new(0.0, 1.0, 0.0), 1.0), plane(Vec3::Y, 0.0)];
+    let floor = Primitives::from(vec![
+        sphere(Vec3::new(0.0, 1.0, 0.0), 1.0),
+        plane(Vec3::Y, 0.0),
+    ]);
     let k = check_scene("sphere on a floor", &floor, &rays(&floor, 4_000, 16));
     assert!(n + m + k >= 38_000);
     // A ray far outside every finite box still finds the floor, in every accelerator.
@@ -444,6 +460,7 @@ fn ties_go_to_the_lowest_index_in_every_accelerator() {
         prims[i] = tri(a, b, c);
     }
     prims[20] = tri(b, Vec3::new(2.0, 2.0, 5.0), c);
+    let prims = Primitives::from(prims);
     let ray = Ray::new(Vec3::new(0.5, 0.5, 0.0), Vec3::Z);
     for (name, accel) in accelerators(&prims) {
         let (p, c) = accel.closest(&prims, &ray, f32::INFINITY).expect("hit");
@@ -477,7 +494,7 @@ fn ties_go_to_the_lowest_index_in_every_accelerator() {
 
 #[test]
 fn nan_and_zero_directions_hit_nothing() {
-    let prims = mixed_scene(50, 12);
+    let prims = Primitives::from(mixed_scene(50, 12));
     for d in [
         Vec3::ZERO,
         Vec3::new(f32::NAN, 0.0, 1.0),
@@ -525,7 +542,7 @@ fn shadow_ray(origin: Vec3, target: Vec3) -> (Ray, f32) {
 fn beam_candidates_answer_every_shadow_ray_of_the_beam() {
     use raytracer::accel::aabb::Aabb;
     use raytracer::accel::Beam;
-    let mut prims = mixed_scene(300, 11);
+    let mut prims = Primitives::from(mixed_scene(300, 11));
     prims.push(plane(Vec3::new(0.0, 1.0, 0.0), -4.5));
     let accels = accelerators(&prims);
     let list = Accel::List;
@@ -547,11 +564,12 @@ fn beam_candidates_answer_every_shadow_ray_of_the_beam() {
         {
             assert!(accel.beam_candidates(&prims, &beam, usize::MAX, &mut candidates));
             kept += candidates.len();
+            let all = Reachable::all(&prims, &candidates);
             for _ in 0..40 {
                 let origin = apex + rng.dir() * offset * rng.next();
                 let (ray, t_max) = shadow_ray(origin, rng.vec(light.min, light.max));
                 let want = list.any(&prims, &ray, t_max, |_| true);
-                let got = accel.any_of(&prims, &candidates, &ray, t_max, |_| true);
+                let got = all.any(&ray, t_max, |_| true);
                 assert_eq!(got, want, "{name}: {ray:?} to {t_max}");
                 rays += 1;
                 blocked += want as usize;
@@ -576,24 +594,36 @@ fn beam_candidates_answer_every_shadow_ray_of_the_beam() {
 }
 
 /// Shadow rays that leave from one origin, tested against only the candidates left once those
-/// the origin leaves behind are set aside (`reachable_from`), give the answer of testing every
+/// the origin leaves behind are set aside (`Reachable::fill`), give the answer of testing every
 /// primitive: from points exactly on axis-aligned floors, walls and tiles (whose triangles
 /// are set aside though the origin lies in their plane), from just above them, and from
-/// anywhere; and primitives are set aside.
+/// anywhere; and primitives are set aside. The floor is a mesh stored as a run, whose
+/// triangles the list makes from the mesh.
 #[test]
 fn reachable_candidates_answer_every_shadow_ray_from_their_origin() {
-    use raytracer::accel::{reachable_from, Beam};
-    let mut prims = mixed_scene(200, 5);
+    use raytracer::accel::Beam;
+    let mut prims = Primitives::from(mixed_scene(200, 5));
     // A floor of 8 × 8 cells at y = −4, a wall at x = 4.5, and tiles at other heights.
     let cell = 1.0;
+    let mut floor = Vec::new();
     for i in 0..8 {
         for j in 0..8 {
             let (x, z) = (-4.0 + i as f32 * cell, -4.0 + j as f32 * cell);
             let p = |dx: f32, dz: f32| Vec3::new(x + dx, -4.0, z + dz);
-            prims.push(tri(p(0.0, 0.0), p(cell, 0.0), p(cell, cell)));
-            prims.push(tri(p(0.0, 0.0), p(cell, cell), p(0.0, cell)));
+            floor.extend([p(0.0, 0.0), p(cell, 0.0), p(cell, cell)]);
+            floor.extend([p(0.0, 0.0), p(cell, cell), p(0.0, cell)]);
         }
     }
+    let faces = (0..floor.len() as u32 / 3)
+        .map(|f| [3 * f, 3 * f + 1, 3 * f + 2])
+        .collect();
+    let floor = Mesh {
+        positions: floor,
+        normals: None,
+        uv: MeshUv::Strip,
+        faces,
+    };
+    prims.push_faces(floor, 0);
     let w = |y: f32, z: f32| Vec3::new(4.5, y, z);
     prims.push(tri(w(-4.0, -4.0), w(6.0, -4.0), w(6.0, 4.0)));
     prims.push(tri(w(-4.0, -4.0), w(6.0, 4.0), w(-4.0, 4.0)));
@@ -615,7 +645,7 @@ fn reachable_candidates_answer_every_shadow_ray_from_their_origin() {
     }
     let list = Accel::List;
     let (mut rays, mut blocked, mut floor_beams, mut set_aside) = (0, 0, 0, 0);
-    let (mut candidates, mut reachable) = (Vec::new(), Vec::new());
+    let (mut candidates, mut reachable) = (Vec::new(), Reachable::default());
     for k in 0..600 {
         let light = light_box(&mut rng);
         let origin = match k % 4 {
@@ -633,15 +663,18 @@ fn reachable_candidates_answer_every_shadow_ray_from_their_origin() {
             continue;
         };
         assert!(list.beam_candidates(&prims, &beam, usize::MAX, &mut candidates));
-        reachable_from(&prims, &beam, &candidates, origin, &mut reachable);
+        reachable.fill(&prims, &beam, &candidates, origin);
+        let kept = reachable.numbers();
+        assert!(kept.iter().all(|p| candidates.contains(p)));
+        assert!(reachable.iter().all(|(p, shape)| *shape == *prims.shape(p)));
         if k % 4 == 0 {
             floor_beams += 1;
-            set_aside += candidates.len() - reachable.len();
+            set_aside += candidates.len() - kept.len();
         }
         for _ in 0..30 {
             let (ray, t_max) = shadow_ray(origin, rng.vec(light.min, light.max));
             let want = list.any(&prims, &ray, t_max, |_| true);
-            let got = list.any_of(&prims, &reachable, &ray, t_max, |_| true);
+            let got = reachable.any(&ray, t_max, |_| true);
             assert_eq!(got, want, "{ray:?} to {t_max}");
             rays += 1;
             blocked += want as usize;
@@ -664,7 +697,7 @@ fn reachable_candidates_answer_every_shadow_ray_from_their_origin() {
 fn rays_from_inside_spheres_get_the_answers_of_the_whole_tree() {
     use raytracer::accel::Interiors;
     use raytracer::ray::Side;
-    let mut prims = mixed_scene(60, 11);
+    let mut prims = Primitives::from(mixed_scene(60, 11));
     let floor = [
         Vec3::new(-6.0, -5.0, -6.0),
         Vec3::new(6.0, -5.0, -6.0),
@@ -689,7 +722,7 @@ fn rays_from_inside_spheres_get_the_answers_of_the_whole_tree() {
     prims.push(sphere(Vec3::new(0.3, 6.2, 0.1), 0.4));
     prims.push(sphere(Vec3::new(0.0, 12.0, 3.0), 1.2));
     let spheres: Vec<u32> = (first_sphere..prims.len())
-        .filter(|&p| matches!(prims[p].shape, Shape::Sphere(_)))
+        .filter(|&p| matches!(prims.get(p as u32).shape, Shape::Sphere(_)))
         .map(|p| p as u32)
         .collect();
     let list = Accel::List;
@@ -701,7 +734,7 @@ fn rays_from_inside_spheres_get_the_answers_of_the_whole_tree() {
             let Some(inside) = interiors.of(s) else {
                 continue;
             };
-            let Shape::Sphere(ball) = &prims[s as usize].shape else {
+            let Shape::Sphere(ball) = prims.get(s).shape else {
                 unreachable!()
             };
             for k in 0..200 {
@@ -715,7 +748,7 @@ fn rays_from_inside_spheres_get_the_answers_of_the_whole_tree() {
                 if p != s {
                     continue;
                 }
-                let hit = prims[p as usize].hit(&outer, c, p, &[]);
+                let hit = prims.get(p).hit(&outer, c, p, &[]);
                 let spawn = hit.spawn_points();
                 let dir = match k % 4 {
                     // Towards the lowest point (a floor's contact), grazing, at random.

@@ -230,7 +230,7 @@ fn material_types_map_onto_the_bsdf_and_emitters() {
             "material": { "kd": 0, "emittance": [2, 2, 2] } } ] } }"#;
     let scene = load_json(json);
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
-    let m = |i: usize| &scene.materials[scene.primitives[i].material as usize];
+    let m = |i: usize| &scene.materials[scene.primitives.material(i as u32) as usize];
     assert_eq!(
         (m(0).kd, m(0).ks, m(0).diffuse),
         (1.0, 0.0, Vec3::new(0.2, 0.4, 0.6))

@@ -196,7 +196,7 @@ fn quads_keep_v0_at_texel_zero_and_z_order_is_repaired() {
     ));
     for s in [&cycle, &z_order] {
         assert_eq!(s.primitives.len(), 2);
-        let m = &s.meshes[0];
+        let m = &s.primitives.meshes()[0];
         assert_eq!(
             m.positions,
             vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y]
@@ -219,7 +219,7 @@ fn file_meshes_flip_v_to_the_image_convention() {
     )
     .unwrap();
     let s = load(&path, &LoadOptions::default()).unwrap();
-    let m = &s.meshes[0];
+    let m = &s.primitives.meshes()[0];
     assert_eq!(
         m.positions,
         vec![Vec3::Z, Vec3::new(2.0, 0.0, 1.0), Vec3::new(0.0, 2.0, 1.0)]
@@ -228,7 +228,7 @@ fn file_meshes_flip_v_to_the_image_convention() {
         m.uv,
         MeshUv::PerVertex(vec![Vec2::Y, Vec2::ONE, Vec2::ZERO])
     );
-    let Shape::Triangle(t) = &s.primitives[0].shape else {
+    let Shape::Triangle(t) = &s.primitives.get(0).shape else {
         panic!()
     };
     assert_eq!(t.p[1], Vec3::new(2.0, 0.0, 1.0));

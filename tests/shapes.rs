@@ -20,8 +20,8 @@ const CAM: &str = r#""camera": { "type": "pinhole", "width": 16, "height": 16, "
 /// The corner positions of the scene's only mesh.
 fn mesh_points(json: &str) -> Vec<Vec3> {
     let s = load_json(json);
-    assert_eq!(s.meshes.len(), 1, "{json}");
-    s.meshes[0].positions.clone()
+    assert_eq!(s.primitives.meshes().len(), 1, "{json}");
+    s.primitives.meshes()[0].positions.clone()
 }
 
 #[test]
@@ -40,8 +40,8 @@ fn an_infinite_plane_lies_at_distance_along_its_normal_and_is_hit_far_outside_ev
             {{ "type": "plane", "distance": -1, "normal": [0, 2, 0] }} ] }} }}"#
     ));
     assert!(s.warnings.is_empty(), "{:?}", s.warnings);
-    let Shape::Plane(p) = &s.primitives[8].shape else {
-        panic!("not a plane: {:?}", s.primitives[8].shape);
+    let Shape::Plane(p) = &s.primitives.get(8).shape else {
+        panic!("not a plane: {:?}", s.primitives.get(8).shape);
     };
     assert_eq!((p.normal, p.distance), (Vec3::Y, -1.0));
     for kind in [AccelKind::Sah, AccelKind::None] {
@@ -54,7 +54,7 @@ fn an_infinite_plane_lies_at_distance_along_its_normal_and_is_hit_far_outside_ev
         let far = Ray::new(Vec3::new(-4000.0, 10.0, 2500.0), -Vec3::Y);
         let (i, c) = accel.closest(&s.primitives, &far, f32::INFINITY).unwrap();
         assert_eq!((i, c.t), (8, 11.0), "{kind}");
-        let hit = s.primitives[8].hit(&far, c, i, &s.meshes);
+        let hit = s.primitives.get(8).hit(&far, c, i, s.primitives.meshes());
         assert_eq!(hit.point, Vec3::new(-4000.0, -1.0, 2500.0));
         assert_eq!(hit.uv, Vec2::new(-4000.0, 2500.0));
         // Under the floor, looking down: nothing.
@@ -189,7 +189,7 @@ fn mesh_file_normals_follow_the_inverse_transpose() {
     )
     .unwrap();
     let s = load(&scene, &LoadOptions::default()).unwrap();
-    let m = &s.meshes[0];
+    let m = &s.primitives.meshes()[0];
     let face_normal = (m.positions[1] - m.positions[0])
         .cross(m.positions[2] - m.positions[0])
         .normalize();
@@ -212,7 +212,7 @@ fn rectangle_xy_xz_and_yz_span_their_ranges_with_upright_uvs() {
             {{ "type": "rectangleYZ", "y0": 0, "y1": 2, "z0": 0, "z1": 3, "k": 7 }} ] }}"#
     ));
     assert!(s.warnings.is_empty(), "{:?}", s.warnings);
-    let xy = &s.meshes[0];
+    let xy = &s.primitives.meshes()[0];
     assert!(xy.positions.iter().all(|p| p.z == -0.4));
     assert!(xy.positions.contains(&Vec3::new(-0.7, -0.2, -0.4)));
     // Image pixel (0, 0) at the top-left corner (x0, y1) seen from +z.
@@ -225,10 +225,20 @@ fn rectangle_xy_xz_and_yz_span_their_ranges_with_upright_uvs() {
         .position(|p| *p == Vec3::new(-0.7, -0.2, -0.4))
         .unwrap();
     assert_eq!(uv[i], Vec2::ZERO);
-    assert!(s.meshes[1].positions.iter().all(|p| p.y == 1.0));
-    assert!(s.meshes[1].positions.contains(&Vec3::new(5.0, 1.0, 5.0)));
-    assert!(s.meshes[2].positions.iter().all(|p| p.x == 7.0));
-    assert!(s.meshes[2].positions.contains(&Vec3::new(7.0, 2.0, 3.0)));
+    assert!(s.primitives.meshes()[1]
+        .positions
+        .iter()
+        .all(|p| p.y == 1.0));
+    assert!(s.primitives.meshes()[1]
+        .positions
+        .contains(&Vec3::new(5.0, 1.0, 5.0)));
+    assert!(s.primitives.meshes()[2]
+        .positions
+        .iter()
+        .all(|p| p.x == 7.0));
+    assert!(s.primitives.meshes()[2]
+        .positions
+        .contains(&Vec3::new(7.0, 2.0, 3.0)));
 }
 
 #[test]
@@ -237,9 +247,9 @@ fn a_trimesh_of_n_poly_spheres_builds_n_spheres() {
         r#"{{ {CAM}, "shapes": [ {{ "id": "polygon", "type": "trimesh", "scale": 0.3,
               "locX": 1.0, "locY": -2.5, "locZ": 0.0, "n": 3 }} ] }}"#
     ));
-    assert_eq!(s.meshes.len(), 3);
+    assert_eq!(s.primitives.meshes().len(), 3);
     let c = Vec3::new(1.0, -2.5, 0.0);
-    for (k, m) in s.meshes.iter().enumerate() {
+    for (k, m) in s.primitives.meshes().iter().enumerate() {
         let d = 5 + k;
         assert_eq!(m.faces.len(), 2 * d * d - 2 * d);
         assert!(m

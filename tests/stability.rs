@@ -9,7 +9,7 @@ mod common;
 
 use common::*;
 use raytracer::accel::{Accel, AccelKind};
-use raytracer::geometry::{Cylinder, Mesh, MeshUv, Primitive, Shape, Sphere, Triangle};
+use raytracer::geometry::{Cylinder, Mesh, MeshUv, Primitive, Primitives, Shape, Sphere};
 use raytracer::math::{orthonormal_basis, Vec2, Vec3};
 use raytracer::ray::{Hit, Ray};
 use raytracer::render::{render, RenderOptions};
@@ -61,26 +61,16 @@ impl Rng {
     }
 }
 
-fn single_mesh(p: Vec<Vec3>, faces: Vec<[u32; 3]>) -> (Vec<Primitive>, Vec<Mesh>) {
-    let prims = faces
-        .iter()
-        .enumerate()
-        .map(|(i, f)| Primitive {
-            shape: Shape::Triangle(Triangle {
-                p: [p[f[0] as usize], p[f[1] as usize], p[f[2] as usize]],
-                mesh: 0,
-                face: i as u32,
-            }),
-            material: 0,
-        })
-        .collect();
+fn single_mesh(p: Vec<Vec3>, faces: Vec<[u32; 3]>) -> Primitives {
     let mesh = Mesh {
         positions: p,
         normals: None,
         uv: MeshUv::Strip,
         faces,
     };
-    (prims, vec![mesh])
+    let mut prims = Primitives::default();
+    prims.push_mesh(mesh, 0);
+    prims
 }
 
 #[derive(Clone, Copy, PartialEq, Debug)]
@@ -93,34 +83,27 @@ enum Kind {
 
 /// A random shape of size `scale` at `pos`, a point on its surface to aim at, and the outward
 /// normal there (for planar shapes, either side).
-fn random_shape(
-    rng: &mut Rng,
-    kind: Kind,
-    pos: Vec3,
-    scale: f32,
-) -> (Vec<Primitive>, Vec<Mesh>, Vec3, Vec3) {
-    let one = |shape: Shape| vec![Primitive { shape, material: 0 }];
+fn random_shape(rng: &mut Rng, kind: Kind, pos: Vec3, scale: f32) -> (Primitives, Vec3, Vec3) {
+    let one = |shape: Shape| Primitives::from(vec![Primitive { shape, material: 0 }]);
     match kind {
         Kind::Sphere => {
             let n = rng.dir();
             let s = Sphere::new(pos, scale, Vec3::Y, Vec3::NEG_X);
-            (one(Shape::Sphere(s)), vec![], pos + n * scale, n)
+            (one(Shape::Sphere(s)), pos + n * scale, n)
         }
         Kind::Triangle => {
             let p: Vec<Vec3> = (0..3).map(|_| pos + rng.dir() * scale).collect();
             let (a, b) = (rng.range(0.05, 0.9), rng.next());
             let target = p[0] + a * ((p[1] - p[0]) + b * (p[2] - p[1]));
             let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or(Vec3::Z);
-            let (prims, meshes) = single_mesh(p, vec![[0, 1, 2]]);
-            (prims, meshes, target, n)
+            (single_mesh(p, vec![[0, 1, 2]]), target, n)
         }
         Kind::Quad => {
             let (e1, e2) = (rng.dir() * scale, rng.dir() * scale);
             let p = vec![pos, pos + e1, pos + e1 + e2, pos + e2];
             let target = pos + rng.range(0.02, 0.98) * e1 + rng.range(0.02, 0.98) * e2;
             let n = e1.cross(e2).normalize_or(Vec3::Z);
-            let (prims, meshes) = single_mesh(p, vec![[0, 1, 2], [0, 2, 3]]);
-            (prims, meshes, target, n)
+            (single_mesh(p, vec![[0, 1, 2], [0, 2, 3]]), target, n)
         }
         Kind::Cylinder => {
             let axis = rng.dir();
@@ -135,12 +118,12 @@ fn random_shape(
             } else {
                 (pos + axis * half + 0.9 * scale * rng.next() * radial, axis)
             };
-            (one(Shape::Cylinder(c)), vec![], target, n)
+            (one(Shape::Cylinder(c)), target, n)
         }
     }
 }
 
-fn hit_any(prims: &[Primitive], ray: &Ray, t_max: f32) -> Option<f32> {
+fn hit_any(prims: &Primitives, ray: &Ray, t_max: f32) -> Option<f32> {
     prims
         .iter()
         .filter_map(|p| p.shape.intersect(ray, t_max))
@@ -180,7 +163,7 @@ fn spawned_rays_never_hit_the_surface_they_leave() {
             unrepresentable += 1;
             continue;
         }
-        let (prims, meshes, target, normal) = random_shape(&mut rng, kind, pos, scale);
+        let (prims, target, normal) = random_shape(&mut rng, kind, pos, scale);
         // From outside: across the tangent plane, on the outer side of a convex shape (either side
         // of a planar one).
         let planar = matches!(kind, Kind::Triangle | Kind::Quad);
@@ -200,7 +183,7 @@ fn spawned_rays_never_hit_the_surface_they_leave() {
             missed_aim += 1;
             continue;
         };
-        let hit: Hit = prims[k].hit(&aim, c, k as u32, &meshes);
+        let hit: Hit = prims.get(k as u32).hit(&aim, c, k as u32, prims.meshes());
         let outward = if hit.normal.dot(aim.dir) < 0.0 {
             hit.normal
         } else {
@@ -421,7 +404,7 @@ fn closed_meshes_are_watertight_near_and_far() {
             };
             for &scale in scales {
                 let pts: Vec<Vec3> = p.iter().map(|v| *v * scale + offset).collect();
-                let (prims, _) = single_mesh(pts.clone(), f.clone());
+                let prims = single_mesh(pts.clone(), f.clone());
                 for kind in [AccelKind::None, AccelKind::Median] {
                     let accel = Accel::build(&prims, kind, 4);
                     let mut targets: Vec<Vec3> = pts.clone();
@@ -478,7 +461,7 @@ fn closed_meshes_are_watertight_near_and_far() {
 #[test]
 fn nan_and_infinite_rays_report_no_hit() {
     let (p, f) = icosphere(2);
-    let (mut prims, _) = single_mesh(p, f);
+    let mut prims = single_mesh(p, f);
     prims.push(Primitive {
         shape: Shape::Sphere(Sphere::new(
             Vec3::new(3.0, 0.0, 0.0),

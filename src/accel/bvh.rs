@@ -38,7 +38,7 @@ use super::kernels::Ray4;
 use super::leaves::{Best, Leaves};
 use super::stack::Stack;
 use super::traverse::{self, next_within, Tree};
-use crate::geometry::{Candidate, Primitive};
+use crate::geometry::{Candidate, Primitives};
 use crate::math::Vec3;
 use crate::ray::PreparedRay;
 
@@ -257,14 +257,13 @@ impl Ref {
 
     /// The bounded primitives of `prims`, in index order (whatever the threads: rayon's
     /// `collect` keeps it).
-    fn bounded(prims: &[Primitive]) -> Vec<Ref> {
-        prims
-            .par_iter()
-            .enumerate()
-            .filter(|(_, p)| p.shape.is_bounded())
-            .map(|(i, p)| {
-                let b = p.shape.bounds();
-                Ref::new(b.min.into(), b.max.into(), i as u32)
+    fn bounded(prims: &Primitives) -> Vec<Ref> {
+        (0..prims.len() as u32)
+            .into_par_iter()
+            .filter_map(|i| {
+                let shape = prims.shape(i);
+                let b = shape.is_bounded().then(|| shape.bounds())?;
+                Some(Ref::new(b.min.into(), b.max.into(), i))
             })
             .collect()
     }
@@ -661,13 +660,8 @@ pub(super) struct BinaryTree {
 }
 
 impl BinaryTree {
-    pub fn build(prims: &[Primitive], options: BvhOptions) -> BinaryTree {
-        let unbounded: Vec<u32> = prims
-            .iter()
-            .enumerate()
-            .filter(|(_, p)| !p.shape.is_bounded())
-            .map(|(i, _)| i as u32)
-            .collect();
+    pub fn build(prims: &Primitives, options: BvhOptions) -> BinaryTree {
+        let unbounded = prims.unbounded();
         let mut refs = Ref::bounded(prims);
         let leaf_size = options.leaf_size.max(1);
         let mut nodes = Vec::with_capacity(2 * prims.len() / leaf_size.min(4) + 1);
@@ -696,7 +690,7 @@ impl BinaryTree {
 
 impl Bvh {
     /// Builds a tree over `prims`. At most `leaves::MAX_PRIMITIVES` primitives (the caller checks).
-    pub fn build(prims: &[Primitive], options: BvhOptions) -> Bvh {
+    pub fn build(prims: &Primitives, options: BvhOptions) -> Bvh {
         let BinaryTree {
             nodes,
             leaves,
@@ -717,7 +711,7 @@ impl Bvh {
     }
 
     /// Builds with the median split (the axis cycling per level).
-    pub fn build_median(prims: &[Primitive], leaf_size: usize) -> Bvh {
+    pub fn build_median(prims: &Primitives, leaf_size: usize) -> Bvh {
         Bvh::build(
             prims,
             BvhOptions {
@@ -728,7 +722,7 @@ impl Bvh {
     }
 
     /// Builds the one-leaf tree ([`Split::None`]).
-    pub fn build_flat(prims: &[Primitive]) -> Bvh {
+    pub fn build_flat(prims: &Primitives) -> Bvh {
         Bvh::build(
             prims,
             BvhOptions {
@@ -739,7 +733,7 @@ impl Bvh {
     }
 
     /// Builds with the binned SAH.
-    pub fn build_sah(prims: &[Primitive], leaf_size: usize) -> Bvh {
+    pub fn build_sah(prims: &Primitives, leaf_size: usize) -> Bvh {
         Bvh::build(
             prims,
             BvhOptions {
@@ -811,7 +805,7 @@ impl Bvh {
     /// See [`crate::accel::Accel::beam_candidates`].
     pub fn beam_candidates(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         beam: &Beam,
         limit: usize,
         out: &mut Vec<u32>,
@@ -824,7 +818,7 @@ impl Bvh {
     /// and skipping subtrees that start beyond the best hit so far.
     pub fn closest(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         r: &PreparedRay,
         t_max: f32,
     ) -> Option<(u32, Candidate)> {
@@ -835,7 +829,7 @@ impl Bvh {
     /// first. The unbounded primitives are tested first.
     pub fn any(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         r: &PreparedRay,
         t_max: f32,
         blocks: impl FnMut(u32) -> bool,
@@ -879,7 +873,7 @@ impl Tree for Bvh {
     /// so far.
     fn closest_below<const NX: bool, const NY: bool, const NZ: bool>(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         r: &PreparedRay,
         root: NodeRef,
         mut best: Best,
@@ -931,7 +925,7 @@ impl Tree for Bvh {
 
     fn any_below<const NX: bool, const NY: bool, const NZ: bool>(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         r: &PreparedRay,
         root: NodeRef,
         t_max: f32,
@@ -987,7 +981,7 @@ impl Tree for Bvh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{Shape, Sphere, Triangle};
+    use crate::geometry::{Primitive, Shape, Sphere, Triangle};
     use crate::math::Vec3;
 
     fn tri(p: [Vec3; 3]) -> Primitive {
@@ -1029,16 +1023,16 @@ mod tests {
 
     /// Every primitive once (the bounded ones in the tree, the others in the unbounded list),
     /// every box containing its contents, depth within the stack.
-    fn check(bvh: &Bvh, prims: &[Primitive], leaf_size: usize) {
+    fn check(bvh: &Bvh, prims: &Primitives, leaf_size: usize) {
         let mut seen = vec![false; prims.len()];
         for p in bvh.leaves.all() {
             assert!(!seen[p as usize], "primitive {p} twice");
-            assert!(prims[p as usize].shape.is_bounded());
+            assert!(prims.get(p).shape.is_bounded());
             seen[p as usize] = true;
         }
         for &p in &bvh.unbounded {
             assert!(!seen[p as usize], "primitive {p} twice");
-            assert!(!prims[p as usize].shape.is_bounded());
+            assert!(!prims.get(p).shape.is_bounded());
             seen[p as usize] = true;
         }
         assert!(seen.iter().all(|&s| s));
@@ -1050,7 +1044,7 @@ mod tests {
             if n.count > 0 {
                 assert!(bvh.leaves.primitives(n.index, n.count).count() <= leaf_size);
                 for p in bvh.leaves.primitives(n.index, n.count) {
-                    let b = prims[p as usize].shape.bounds();
+                    let b = prims.get(p).shape.bounds();
                     assert!(contains(lo, hi, &b.min.to_array(), &b.max.to_array()));
                 }
             } else {
@@ -1079,7 +1073,7 @@ mod tests {
 
     /// The tree the plain recursion builds over `prims`, with no part built side by side: its
     /// nodes and the primitives' order.
-    fn serial_tree(prims: &[Primitive], leaf_size: usize, split: Split) -> (Vec<Node>, Vec<u32>) {
+    fn serial_tree(prims: &Primitives, leaf_size: usize, split: Split) -> (Vec<Node>, Vec<u32>) {
         let mut refs = Ref::bounded(prims);
         let mut builder = Builder::new(leaf_size, split);
         builder.nodes.push(Node::default());
@@ -1100,6 +1094,7 @@ mod tests {
             })
             .collect();
         prims.extend_from_within(..500);
+        let prims = Primitives::from(prims);
         for split in [Split::Sah, Split::Median] {
             let (want_nodes, want_order) = serial_tree(&prims, 4, split);
             for threads in [1, 2, 5] {
@@ -1144,7 +1139,7 @@ mod tests {
     #[test]
     fn both_builders_make_valid_trees() {
         for n in [1, 2, 3, 5, 17, 100, 1000] {
-            let prims = grid(n);
+            let prims = Primitives::from(grid(n));
             for leaf in [1, 2, 4, 8] {
                 check(&Bvh::build_median(&prims, leaf), &prims, leaf);
                 check(&Bvh::build_sah(&prims, leaf), &prims, leaf);
@@ -1162,6 +1157,7 @@ mod tests {
         };
         prims.insert(3, plane(Vec3::Z, -5.0));
         prims.push(plane(Vec3::Z, -5.0)); // a duplicate: the lower index wins the tie
+        let prims = Primitives::from(prims);
         for bvh in [Bvh::build_sah(&prims, 4), Bvh::build_median(&prims, 2)] {
             check(&bvh, &prims, 4);
             assert_eq!(bvh.unbounded(), &[3, 101]);
@@ -1178,16 +1174,13 @@ mod tests {
             // Through the grid (z from 0 to 0.3 at these points): a triangle is nearer.
             let r = PreparedRay::new(&crate::ray::Ray::new(Vec3::new(5.2, 0.2, 10.0), -Vec3::Z));
             let (i, c) = bvh.closest(&prims, &r, f32::INFINITY).unwrap();
-            assert!(
-                prims[i as usize].shape.is_bounded() && c.t < 10.5,
-                "{i} {c:?}"
-            );
+            assert!(prims.get(i).shape.is_bounded() && c.t < 10.5, "{i} {c:?}");
         }
     }
 
     #[test]
     fn coincident_centroids_split_at_the_middle() {
-        let prims: Vec<_> = (0..100).map(|_| sphere(Vec3::ONE, 1.0)).collect();
+        let prims = Primitives::from(vec![sphere(Vec3::ONE, 1.0); 100]);
         let bvh = Bvh::build_sah(&prims, 4);
         check(&bvh, &prims, 4);
         let s = bvh.stats();
@@ -1200,6 +1193,7 @@ mod tests {
         let prims: Vec<_> = (0..400)
             .map(|i| sphere(Vec3::new(1.5f32.powi(i / 4), 0.0, 0.0), 1.0))
             .collect();
+        let prims = Primitives::from(prims);
         let bvh = Bvh::build_sah(&prims, 1);
         check(&bvh, &prims, 1);
         // Huge and non-finite coordinates must not panic.
@@ -1210,6 +1204,7 @@ mod tests {
             tri([Vec3::ZERO; 3]),
             tri([Vec3::ZERO; 3]),
         ];
+        let prims = Primitives::from(prims);
         for leaf in [1, 4] {
             check(&Bvh::build_sah(&prims, leaf), &prims, leaf);
         }
@@ -1228,6 +1223,7 @@ mod tests {
                 Vec3::new(x, 1.0, 0.0),
             ]));
         }
+        let prims = Primitives::from(prims);
         let sah = Bvh::build_sah(&prims, 4);
         let median = Bvh::build_median(&prims, 4);
         let cost = |b: &Bvh| {

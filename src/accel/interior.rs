@@ -26,7 +26,7 @@ use glam::Vec3A;
 use crate::accel::aabb::{slab, Aabb};
 use crate::accel::leaves::Best;
 use crate::accel::Accel;
-use crate::geometry::{Candidate, Primitive, Shape};
+use crate::geometry::{Candidate, Primitive, Primitives, Shape};
 use crate::math::Vec3;
 use crate::ray::{PreparedRay, Ray};
 
@@ -63,13 +63,12 @@ impl Interiors {
     /// The table for the spheres among `prims` for which `wanted` holds (those a ray can start
     /// inside of: the transmissive ones), found through `accel`. Empty for the plain list, which
     /// stays the reference that tests everything.
-    pub fn new(prims: &[Primitive], accel: &Accel, wanted: impl Fn(&Primitive) -> bool) -> Self {
-        let unbounded: Vec<u32> = (0..prims.len() as u32)
-            .filter(|&p| !prims[p as usize].shape.is_bounded())
-            .collect();
+    pub fn new(prims: &Primitives, accel: &Accel, wanted: impl Fn(&Primitive) -> bool) -> Self {
+        // Spheres are records: the triangles of large meshes are not read.
+        let unbounded = prims.unbounded();
         let mut table = Interiors::default();
         let mut near = Vec::new();
-        for (p, prim) in prims.iter().enumerate() {
+        for (p, prim) in prims.records() {
             let Shape::Sphere(s) = &prim.shape else {
                 continue;
             };
@@ -89,16 +88,14 @@ impl Interiors {
             near.extend(&unbounded);
             near.sort_unstable();
             table.tested.extend(near.iter().map(|&p| {
-                let b = prims[p as usize].shape.bounds();
+                let b = prims.shape(p).bounds();
                 Neighbour {
                     prim: p,
                     lo: b.min.into(),
                     hi: b.max.into(),
                 }
             }));
-            table
-                .spheres
-                .push((p as u32, start, table.tested.len() as u32));
+            table.spheres.push((p, start, table.tested.len() as u32));
         }
         table
     }
@@ -123,7 +120,7 @@ impl Interiors {
     pub fn closest(
         &self,
         accel: &Accel,
-        prims: &[Primitive],
+        prims: &Primitives,
         inside: Inside,
         ray: &Ray,
         t_max: f32,
@@ -131,7 +128,7 @@ impl Interiors {
         let (sphere, start, end) = self.spheres[inside.0 as usize];
         let r = PreparedRay::new(ray);
         // (None too for a `t_max` that is not positive, as the tree would answer.)
-        let Some(own) = prims[sphere as usize].shape.intersect_prepared(&r, t_max) else {
+        let Some(own) = prims.shape(sphere).intersect_prepared(&r, t_max) else {
             return accel.closest(prims, ray, t_max);
         };
         let mut best = Best::new(t_max);
@@ -143,7 +140,7 @@ impl Interiors {
             } else if slab(n.lo, n.hi, &r, own.t).0 {
                 // A hit at `t ≤ own.t` passes its box's slab test under that bound (see
                 // `Shape::intersect_prepared`); a box that fails it cannot beat the sphere.
-                prims[p as usize].shape.intersect_prepared(&r, best.t)
+                prims.shape(p).intersect_prepared(&r, best.t)
             } else {
                 None
             };

@@ -8,7 +8,7 @@
 //! differ only in their nodes; how a leaf answers a query is here, once.
 
 use super::kernels::{Hits4, Ray4, Rows, Sphere4, Triangle4};
-use crate::geometry::{Candidate, Primitive, Shape};
+use crate::geometry::{Candidate, Primitives, Shape};
 use crate::math::next_float_up;
 use crate::ray::PreparedRay;
 
@@ -55,9 +55,9 @@ impl Best {
     /// first of equal-`t` hits stays, and a primitive of lower index at the same `t` met later
     /// in a leaf still wins there ([`Leaves::closest`]).
     #[inline(always)]
-    pub fn among(&mut self, prims: &[Primitive], indices: &[u32], r: &PreparedRay) {
+    pub fn among(&mut self, prims: &Primitives, indices: &[u32], r: &PreparedRay) {
         for &p in indices {
-            if let Some(c) = prims[p as usize].shape.intersect_prepared(r, self.t) {
+            if let Some(c) = prims.shape(p).intersect_prepared(r, self.t) {
                 self.take(p, c);
             }
         }
@@ -151,19 +151,12 @@ enum Kind {
     Other = 2,
 }
 
-fn kind(p: &Primitive) -> Kind {
-    match p.shape {
+fn kind(shape: &Shape) -> Kind {
+    match shape {
         Shape::Triangle(_) => Kind::Triangle,
         Shape::Sphere(_) => Kind::Sphere,
         _ => Kind::Other,
     }
-}
-
-/// The primitives of `leaf` of kind `k`, in their order there.
-fn of_kind<'a>(prims: &'a [Primitive], leaf: &'a [u32], k: Kind) -> impl Iterator<Item = u32> + 'a {
-    leaf.iter()
-        .copied()
-        .filter(move |&p| kind(&prims[p as usize]) == k)
 }
 
 /// Every leaf of a tree, in blocks.
@@ -177,19 +170,28 @@ impl Leaves {
     /// Lays out the leaves `spans` (each a `(start, count)` of entries of `order`) in blocks, and
     /// updates each span to its new place (padding included).
     pub fn pack<'a>(
-        prims: &[Primitive],
+        prims: &Primitives,
         order: &[u32],
         spans: impl Iterator<Item = (&'a mut u32, &'a mut u32)>,
     ) -> Leaves {
         debug_assert!(prims.len() <= MAX_PRIMITIVES);
         let spans: Vec<_> = spans.collect();
+        // Each primitive's kind, found once (a primitive with no record is a mesh's triangle).
+        let kind_at: Vec<Kind> = order
+            .iter()
+            .map(|&p| prims.record(p).map_or(Kind::Triangle, |r| kind(&r.shape)))
+            .collect();
         let kinds = [Kind::Triangle, Kind::Sphere, Kind::Other];
+        // The positions in `order` of a leaf's primitives of kind `k`, in their order there.
+        let of_kind = |start: u32, count: u32, k: Kind| {
+            let kind_at = &kind_at;
+            (start..start + count).filter(move |&j| kind_at[j as usize] == k)
+        };
         let total = spans
             .iter()
             .map(|(start, count)| {
-                let leaf = &order[**start as usize..][..**count as usize];
                 kinds
-                    .map(|k| of_kind(prims, leaf, k).count().div_ceil(4))
+                    .map(|k| of_kind(**start, **count, k).count().div_ceil(4))
                     .iter()
                     .sum::<usize>()
             })
@@ -197,32 +199,43 @@ impl Leaves {
         let mut blocks = Vec::with_capacity(total);
         let mut lanes = Vec::with_capacity(4);
         for (start, count) in spans {
-            let leaf = &order[*start as usize..][..*count as usize];
+            let leaf = (*start, *count);
             *start = 4 * blocks.len() as u32;
             for k in kinds {
-                let mut of_kind = of_kind(prims, leaf, k);
+                let mut of_kind = of_kind(leaf.0, leaf.1, k);
                 loop {
                     lanes.clear();
                     lanes.extend(of_kind.by_ref().take(4));
                     if lanes.is_empty() {
                         break;
                     }
-                    let shape = |l: usize| lanes.get(l).map(|&p| &prims[p as usize].shape);
-                    let shapes = match k {
-                        Kind::Triangle => Triangle4::new(std::array::from_fn(|l| match shape(l) {
-                            Some(Shape::Triangle(t)) => Some(t),
-                            _ => None,
-                        }))
-                        .rows(),
-                        Kind::Sphere => Sphere4::new(std::array::from_fn(|l| match shape(l) {
-                            Some(Shape::Sphere(s)) => Some(s),
-                            _ => None,
-                        }))
-                        .rows(),
+                    for j in lanes.iter_mut() {
+                        *j = order[*j as usize];
+                    }
+                    let rows = match k {
                         Kind::Other => Block::EMPTY.shapes,
+                        _ => {
+                            let lane: [Option<Shape>; 4] = std::array::from_fn(|l| {
+                                lanes.get(l).map(|&p| prims.shape(p).into_owned())
+                            });
+                            match k {
+                                Kind::Triangle => {
+                                    Triangle4::new(lane.each_ref().map(|s| match s {
+                                        Some(Shape::Triangle(t)) => Some(t),
+                                        _ => None,
+                                    }))
+                                    .rows()
+                                }
+                                _ => Sphere4::new(lane.each_ref().map(|s| match s {
+                                    Some(Shape::Sphere(s)) => Some(s),
+                                    _ => None,
+                                }))
+                                .rows(),
+                            }
+                        }
                     };
                     lanes.resize(4, PAD);
-                    blocks.push(Block::new(k, shapes, &lanes));
+                    blocks.push(Block::new(k, rows, &lanes));
                 }
             }
             *count = 4 * blocks.len() as u32 - *start;
@@ -274,7 +287,7 @@ impl Leaves {
     #[inline(always)]
     pub fn closest(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         r: &PreparedRay,
         r4: &Ray4,
         (start, count): (u32, u32),
@@ -294,7 +307,7 @@ impl Leaves {
                 let p = block.primitive(l);
                 let b = bound(p, best);
                 let c = if scalar & (1 << l) != 0 {
-                    prims[p as usize].shape.intersect_prepared(r, b)
+                    prims.shape(p).intersect_prepared(r, b)
                 } else {
                     (h.t[l] < b).then(|| Candidate {
                         t: h.t[l],
@@ -314,7 +327,7 @@ impl Leaves {
     #[allow(clippy::too_many_arguments)]
     pub fn any(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         r: &PreparedRay,
         r4: &Ray4,
         (start, count): (u32, u32),
@@ -326,11 +339,8 @@ impl Leaves {
             let scalar = h.scalar;
             for l in lanes(h.hit | scalar) {
                 let p = block.primitive(l);
-                let hit = scalar & (1 << l) == 0
-                    || prims[p as usize]
-                        .shape
-                        .intersect_prepared(r, t_max)
-                        .is_some();
+                let hit =
+                    scalar & (1 << l) == 0 || prims.shape(p).intersect_prepared(r, t_max).is_some();
                 if hit && blocks(p) {
                     return true;
                 }

@@ -19,6 +19,7 @@ pub mod bvh;
 pub mod interior;
 pub mod kernels;
 mod leaves;
+pub mod reachable;
 pub mod stack;
 mod traverse;
 pub mod wide;
@@ -26,10 +27,10 @@ pub mod wide;
 pub use beam::Beam;
 pub use bvh::{Bvh, BvhOptions, BvhStats, Split};
 pub use interior::{Inside, Interiors};
+pub use reachable::Reachable;
 pub use wide::{Bvh4, Bvh8};
 
-use crate::geometry::{Candidate, Primitive, Shape};
-use crate::math::Vec3;
+use crate::geometry::{Candidate, Primitives, Shape};
 use crate::ray::{PreparedRay, Ray};
 use aabb::Aabb;
 
@@ -130,7 +131,7 @@ pub enum Accel {
 impl Accel {
     /// Builds the accelerator `kind` over `prims`; `leaf_size` is the most primitives in a BVH
     /// leaf.
-    pub fn build(prims: &[Primitive], kind: AccelKind, leaf_size: usize) -> Accel {
+    pub fn build(prims: &Primitives, kind: AccelKind, leaf_size: usize) -> Accel {
         // A leaf entry keeps its block's kind above the primitive's index.
         if prims.len() > leaves::MAX_PRIMITIVES {
             return Accel::List;
@@ -178,7 +179,7 @@ impl Accel {
     /// The closest hit with `0 < t < t_max`: the primitive index and its candidate. Among hits at
     /// the same `t`, the least primitive index.
     #[inline]
-    pub fn closest(&self, prims: &[Primitive], ray: &Ray, t_max: f32) -> Option<(u32, Candidate)> {
+    pub fn closest(&self, prims: &Primitives, ray: &Ray, t_max: f32) -> Option<(u32, Candidate)> {
         if t_max.is_nan() || t_max <= 0.0 {
             return None;
         }
@@ -188,10 +189,10 @@ impl Accel {
                 // In index order with a strict bound: the first of equal-t hits stays.
                 let mut best = None;
                 let mut t_max = t_max;
-                for (i, p) in prims.iter().enumerate() {
-                    if let Some(c) = p.shape.intersect_prepared(&r, t_max) {
+                for i in 0..prims.len() as u32 {
+                    if let Some(c) = prims.shape(i).intersect_prepared(&r, t_max) {
                         t_max = c.t;
-                        best = Some((i as u32, c));
+                        best = Some((i, c));
                     }
                 }
                 best
@@ -209,7 +210,7 @@ impl Accel {
     #[inline]
     pub fn any(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         ray: &Ray,
         t_max: f32,
         mut blocks: impl FnMut(u32) -> bool,
@@ -219,10 +220,8 @@ impl Accel {
         }
         let r = PreparedRay::new(ray);
         match self {
-            Accel::List => prims
-                .iter()
-                .enumerate()
-                .any(|(i, p)| p.shape.intersect_prepared(&r, t_max).is_some() && blocks(i as u32)),
+            Accel::List => (0..prims.len() as u32)
+                .any(|i| prims.shape(i).intersect_prepared(&r, t_max).is_some() && blocks(i)),
             Accel::Bvh(b) => b.any(prims, &r, t_max, blocks),
             Accel::Bvh4(b) => b.any(prims, &r, t_max, blocks),
             Accel::Bvh8(b) => b.any(prims, &r, t_max, blocks),
@@ -235,7 +234,7 @@ impl Accel {
     /// the whole accelerator, as cheap as a long list.
     pub fn beam_candidates(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         beam: &Beam,
         limit: usize,
         out: &mut Vec<u32>,
@@ -254,7 +253,7 @@ impl Accel {
     /// plain list (which keeps no boxes to find them by).
     pub fn meeting_box(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         region: &Aabb,
         limit: usize,
         out: &mut Vec<u32>,
@@ -267,88 +266,34 @@ impl Accel {
             Accel::Bvh8(b) => traverse::meeting_box(b, prims, region, limit, out),
         }
     }
-
-    /// [`Accel::any`] over `candidates` only, gathered by [`Accel::beam_candidates`] for a beam
-    /// that holds `ray` up to `t_max`: then the answer is the one over every primitive.
-    #[inline]
-    pub fn any_of(
-        &self,
-        prims: &[Primitive],
-        candidates: &[u32],
-        ray: &Ray,
-        t_max: f32,
-        mut blocks: impl FnMut(u32) -> bool,
-    ) -> bool {
-        if t_max.is_nan() || t_max <= 0.0 {
-            return false;
-        }
-        any_among(
-            prims,
-            candidates,
-            &PreparedRay::new(ray),
-            t_max,
-            &mut blocks,
-        )
-    }
 }
 
 /// Whether one of the primitives `indices` accepted by `blocks` is hit with `0 < t < t_max`
 /// (what [`Accel::any`] asks of a leaf, of the unbounded list or of a beam's candidates).
 #[inline]
 pub(crate) fn any_among(
-    prims: &[Primitive],
+    prims: &Primitives,
     indices: &[u32],
     r: &PreparedRay,
     t_max: f32,
     blocks: &mut impl FnMut(u32) -> bool,
 ) -> bool {
-    indices.iter().any(|&i| {
-        prims[i as usize]
-            .shape
-            .intersect_prepared(r, t_max)
-            .is_some()
-            && blocks(i)
-    })
-}
-
-/// Of `candidates` (gathered for `beam`), those a ray of the beam leaving from `origin` may
-/// still hit, written to `out`: all but the bounded primitives it leaves behind
-/// ([`Beam::leaves_behind`]) and the axis-aligned triangles it leaves behind
-/// ([`Beam::leaves_plane_behind`]). Testing only these answers every such ray as testing all
-/// the candidates does.
-pub fn reachable_from(
-    prims: &[Primitive],
-    beam: &Beam,
-    candidates: &[u32],
-    origin: Vec3,
-    out: &mut Vec<u32>,
-) {
-    out.clear();
-    out.extend(candidates.iter().copied().filter(|&p| {
-        let shape = &prims[p as usize].shape;
-        let behind = |b: &Aabb| beam.leaves_behind(origin, b);
-        !match shape {
-            Shape::Plane(_) => false,
-            Shape::Triangle(t) => {
-                let b = t.bounds();
-                behind(&b) || beam.leaves_plane_behind(origin, &b)
-            }
-            Shape::Sphere(_) | Shape::Cylinder(_) => behind(&shape.bounds()),
-        }
-    }));
+    indices
+        .iter()
+        .any(|&i| prims.shape(i).intersect_prepared(r, t_max).is_some() && blocks(i))
 }
 
 /// Appends to `out` those of the primitives `indices` that some ray of `beam` may hit; `false`
 /// as soon as that would make `out` longer than `limit`.
 pub(crate) fn gather(
     beam: &Beam,
-    prims: &[Primitive],
+    prims: &Primitives,
     indices: impl IntoIterator<Item = u32>,
     limit: usize,
     out: &mut Vec<u32>,
 ) -> bool {
     for i in indices {
-        if may_hit(beam, &prims[i as usize].shape) {
+        if may_hit(beam, &prims.shape(i)) {
             if out.len() >= limit {
                 return false;
             }

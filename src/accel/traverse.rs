@@ -13,7 +13,7 @@ use super::kernels::Ray4;
 use super::leaves::{Best, Leaves};
 use super::stack::Stack;
 use super::{any_among, gather};
-use crate::geometry::{Candidate, Primitive};
+use crate::geometry::{Candidate, Primitives};
 use crate::ray::PreparedRay;
 
 /// A tree as its queries see it. `NX`, `NY`, `NZ` are the signs of the ray's direction (`true`
@@ -49,7 +49,7 @@ pub(super) trait Tree {
     /// `best`.
     fn closest_below<const NX: bool, const NY: bool, const NZ: bool>(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         r: &PreparedRay,
         root: NodeRef,
         best: Best,
@@ -59,7 +59,7 @@ pub(super) trait Tree {
     /// meets) is hit before `t_max`.
     fn any_below<const NX: bool, const NY: bool, const NZ: bool>(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         r: &PreparedRay,
         root: NodeRef,
         t_max: f32,
@@ -71,7 +71,7 @@ pub(super) trait Tree {
 /// primitives first, in index order, then the tree.
 pub(super) fn closest(
     tree: &impl Tree,
-    prims: &[Primitive],
+    prims: &Primitives,
     r: &PreparedRay,
     t_max: f32,
 ) -> Option<(u32, Candidate)> {
@@ -106,7 +106,7 @@ pub(super) fn closest(
 /// first. The unbounded primitives are tested first.
 pub(super) fn any(
     tree: &impl Tree,
-    prims: &[Primitive],
+    prims: &Primitives,
     r: &PreparedRay,
     t_max: f32,
     mut blocks: impl FnMut(u32) -> bool,
@@ -151,7 +151,7 @@ pub(super) const TRAVERSAL_STACK_SIZE: usize = (MAX_WIDTH - 1) * STACK_SIZE;
 /// of every leaf whose box and own bounds meet the beam.
 pub(super) fn beam_candidates(
     tree: &impl Tree,
-    prims: &[Primitive],
+    prims: &Primitives,
     beam: &Beam,
     limit: usize,
     out: &mut Vec<u32>,
@@ -186,7 +186,7 @@ pub(super) fn beam_candidates(
 /// than `limit`.
 pub(super) fn meeting_box(
     tree: &impl Tree,
-    prims: &[Primitive],
+    prims: &Primitives,
     region: &Aabb,
     limit: usize,
     out: &mut Vec<u32>,
@@ -204,7 +204,7 @@ pub(super) fn meeting_box(
     while let Some(n) = stack.pop() {
         if n.count > 0 {
             for p in tree.leaves().primitives(n.index, n.count) {
-                if meets(&prims[p as usize].shape.bounds()) {
+                if meets(&prims.shape(p).bounds()) {
                     if out.len() >= limit {
                         return false;
                     }

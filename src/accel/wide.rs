@@ -29,7 +29,7 @@ use super::kernels::Ray4;
 use super::leaves::{lanes, Best, Leaves};
 use super::stack::Stack;
 use super::traverse::{self, next_within, Tree, MAX_WIDTH, TRAVERSAL_STACK_SIZE};
-use crate::geometry::{Candidate, Primitive};
+use crate::geometry::{Candidate, Primitives};
 use crate::math::Vec3;
 use crate::ray::PreparedRay;
 
@@ -204,7 +204,7 @@ fn collapse<const C: usize>(
 impl<const C: usize> WideBvh<C> {
     /// Builds the binary SAH tree over `prims` with leaves of at most `leaf_size` primitives and
     /// collapses it. At most `leaves::MAX_PRIMITIVES` primitives (the caller checks).
-    pub fn build(prims: &[Primitive], leaf_size: usize) -> WideBvh<C> {
+    pub fn build(prims: &Primitives, leaf_size: usize) -> WideBvh<C> {
         let BinaryTree {
             nodes: binary,
             mut leaves,
@@ -266,7 +266,7 @@ impl<const C: usize> WideBvh<C> {
     /// See [`crate::accel::Accel::beam_candidates`].
     pub fn beam_candidates(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         beam: &Beam,
         limit: usize,
         out: &mut Vec<u32>,
@@ -279,7 +279,7 @@ impl<const C: usize> WideBvh<C> {
     /// nearest first and skipping subtrees that start beyond the best hit so far.
     pub fn closest(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         r: &PreparedRay,
         t_max: f32,
     ) -> Option<(u32, Candidate)> {
@@ -290,7 +290,7 @@ impl<const C: usize> WideBvh<C> {
     /// first. The unbounded primitives are tested first.
     pub fn any(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         r: &PreparedRay,
         t_max: f32,
         blocks: impl FnMut(u32) -> bool,
@@ -337,7 +337,7 @@ impl<const C: usize> Tree for WideBvh<C> {
     /// far.
     fn closest_below<const NX: bool, const NY: bool, const NZ: bool>(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         r: &PreparedRay,
         root: NodeRef,
         mut best: Best,
@@ -378,7 +378,7 @@ impl<const C: usize> Tree for WideBvh<C> {
     /// Visits the hit children in slot order (see the module docs).
     fn any_below<const NX: bool, const NY: bool, const NZ: bool>(
         &self,
-        prims: &[Primitive],
+        prims: &Primitives,
         r: &PreparedRay,
         root: NodeRef,
         t_max: f32,
@@ -419,7 +419,7 @@ impl<const C: usize> Tree for WideBvh<C> {
 mod tests {
     use super::*;
     use crate::accel::bvh::Bvh;
-    use crate::geometry::{Plane, Shape, Sphere, Triangle};
+    use crate::geometry::{Plane, Primitive, Shape, Sphere, Triangle};
 
     fn grid(n: usize) -> Vec<Primitive> {
         (0..n)
@@ -445,7 +445,7 @@ mod tests {
 
     /// Every bounded primitive in exactly one leaf, inside its slot's box; every unused slot
     /// empty, pointing at the empty leaf; every node's children inside its own slot's box.
-    fn check<const C: usize>(tree: &WideBvh<C>, prims: &[Primitive]) {
+    fn check<const C: usize>(tree: &WideBvh<C>, prims: &Primitives) {
         let mut seen = vec![0u32; prims.len()];
         let Some((lo, hi, root)) = tree.root else {
             assert!(prims.iter().all(|p| !p.shape.is_bounded()));
@@ -456,7 +456,7 @@ mod tests {
             if n.count > 0 {
                 for p in tree.leaves.primitives(n.index, n.count) {
                     seen[p as usize] += 1;
-                    let pb = prims[p as usize].shape.bounds();
+                    let pb = prims.get(p).shape.bounds();
                     assert!(b.contains(pb.min, 0.0) && b.contains(pb.max, 0.0));
                 }
                 continue;
@@ -491,6 +491,7 @@ mod tests {
                         material: 0,
                     });
                 }
+                let prims = Primitives::from(prims);
                 check(&Bvh4::build(&prims, leaf), &prims);
                 check(&Bvh8::build(&prims, leaf), &prims);
             }
@@ -499,7 +500,7 @@ mod tests {
 
     #[test]
     fn collapsing_fills_nodes_and_cuts_the_depth() {
-        let prims = grid(4000);
+        let prims = Primitives::from(grid(4000));
         let binary = Bvh::build_sah(&prims, 4).stats();
         let four = Bvh4::build(&prims, 4).stats();
         let eight = Bvh8::build(&prims, 4).stats();

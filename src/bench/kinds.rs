@@ -44,9 +44,9 @@ pub fn kind_rays(scene: &Scene, accel: &Accel) -> KindRays {
             let Some((p, c)) = accel.closest(prims, &ray, f32::INFINITY) else {
                 continue;
             };
-            let primitive = &prims[p as usize];
+            let primitive = prims.get(p);
             let material = &scene.materials[primitive.material as usize];
-            let hit = primitive.hit_with(&ray, c, p, &scene.meshes, false);
+            let hit = primitive.hit_with(&ray, c, p, prims.meshes(), false);
             let front = hit.normal.dot(ray.dir) < 0.0;
             let n = if front { hit.normal } else { -hit.normal };
             if material.kr > 0.0 || material.kt > 0.0 {

@@ -14,7 +14,7 @@ pub mod kinds;
 use crate::accel::{Accel, AccelKind};
 use crate::camera::{Camera, Handedness};
 use crate::files::shown;
-use crate::geometry::{Mesh, MeshUv, Primitive, Shape, Sphere, Triangle};
+use crate::geometry::{Mesh, MeshUv, Primitive, Primitives, Shape, Sphere, Triangle};
 use crate::integrator::{Integrator, Kind};
 use crate::light::{Intensity, Light};
 use crate::material::Material;
@@ -101,20 +101,9 @@ pub fn sphere_grid(g: u32, s: u32, width: u32, height: u32) -> Scene {
         uv: MeshUv::PerVertex(uvs),
         faces,
     };
-    let meshes = vec![ground, balls];
-    let mut primitives = Vec::with_capacity(sphere_grid_triangles(g, s));
-    for (m, mesh) in meshes.iter().enumerate() {
-        for (f, face) in mesh.faces.iter().enumerate() {
-            primitives.push(Primitive {
-                shape: Shape::Triangle(Triangle {
-                    p: face.map(|v| mesh.positions[v as usize]),
-                    mesh: m as u32,
-                    face: f as u32,
-                }),
-                material: 0,
-            });
-        }
-    }
+    let mut primitives = Primitives::default();
+    primitives.push_mesh(ground, 0);
+    primitives.push_mesh(balls, 0);
     let eye = Vec3::new(0.0, 0.6 * gf, -1.1 * gf);
     let fov_y = 2.0 * ((30.0f32).to_radians().tan() * height as f32 / width as f32).atan();
     let camera = Camera::new(
@@ -153,7 +142,6 @@ pub fn sphere_grid(g: u32, s: u32, width: u32, height: u32) -> Scene {
         primitives,
         materials: vec![Material::default()],
         textures: Vec::new(),
-        meshes,
         has_transmissive: false,
         warnings: Vec::new(),
         inputs: Vec::new(),
@@ -165,9 +153,9 @@ pub fn grid_light(g: u32) -> Vec3 {
     Vec3::new(0.0, 2.0 * g as f32, 0.0)
 }
 
-/// Bytes of the primitive records.
+/// Bytes of the primitive records (and of the runs standing in for large meshes' records).
 pub fn primitive_bytes(scene: &Scene) -> usize {
-    scene.primitives.len() * std::mem::size_of::<Primitive>()
+    scene.primitives.record_bytes()
 }
 
 /// Number of triangle primitives.
@@ -651,7 +639,8 @@ pub fn ray_sets(scene: &Scene, accel: &Accel, light: Vec3, seed: u64) -> RaySets
             let Some((p, c)) = accel.closest(&scene.primitives, &ray, f32::INFINITY) else {
                 continue;
             };
-            let hit = scene.primitives[p as usize].hit(&ray, c, p, &scene.meshes);
+            let prims = &scene.primitives;
+            let hit = prims.get(p).hit(&ray, c, p, prims.meshes());
             sets.shadow.push(hit.spawn_to(light));
             let key = SampleKey::new(x, y, 0, 1, seed);
             sets.incoherent
@@ -809,6 +798,8 @@ pub struct Throughput {
     pub triangles: usize,
     pub build_median_split: Duration,
     pub primitive_bytes: usize,
+    /// Bytes of the meshes' vertex and face buffers, which every representation keeps.
+    pub mesh_bytes: usize,
     /// One entry per tree of [`THROUGHPUT_TREES`].
     pub trees: Vec<TreeThroughput>,
 }
@@ -850,6 +841,7 @@ pub fn throughput(
         triangles: triangle_count(&scene),
         build_median_split,
         primitive_bytes: primitive_bytes(&scene),
+        mesh_bytes: scene.primitives.mesh_bytes(),
         trees,
     })
 }
@@ -992,10 +984,9 @@ pub fn random_scene(n: usize, width: u32, height: u32, backdrop: bool) -> Scene 
                 falloff: crate::light::Falloff::InverseSquare { scale: 1.0 },
             },
         }],
-        primitives,
+        primitives: Primitives::from_records(primitives, meshes),
         materials: vec![Material::default()],
         textures: Vec::new(),
-        meshes,
         has_transmissive: false,
         warnings: Vec::new(),
         inputs: Vec::new(),
@@ -1071,7 +1062,7 @@ mod tests {
     #[test]
     fn grid_vertices_lie_on_their_spheres() {
         let scene = sphere_grid(2, 8, 8, 6);
-        for p in &scene.primitives[2..] {
+        for p in scene.primitives.iter().skip(2) {
             let Shape::Triangle(t) = &p.shape else {
                 panic!("only triangles");
             };

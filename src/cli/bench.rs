@@ -256,8 +256,10 @@ fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
         };
         outln!(
             "Table 1: 1 spp, {threads} thread(s), leaf size {leaf_size}, medians of {runs} run(s); \
-             memory = accelerator + primitive records ({} B each)",
-            std::mem::size_of::<crate::geometry::Primitive>()
+             memory = accelerator + primitive records ({} B each; none for the triangles of \
+             meshes of over {} faces)",
+            std::mem::size_of::<crate::geometry::Primitive>(),
+            crate::geometry::primitives::RECORD_MESH_MAX_FACES,
         );
         let rows = table1(&options, |r| {
             eprintln!("  {}", row_fields(r).join(" "));
@@ -352,17 +354,19 @@ fn throughput_rows(t: &Throughput, threads: usize) -> Vec<Vec<String>> {
 fn print_throughput(t: &Throughput, threads: usize) {
     let tris = t.triangles as f64;
     outln!(
-        "  G={} S={}: {} triangles, primitive records {:.1} B/triangle; median split build {:.1} ms",
+        "  G={} S={}: {} triangles, primitive records {:.1} B/triangle (mesh buffers {:.1} \
+         more); median split build {:.1} ms",
         t.g,
         t.s,
         t.triangles,
         t.primitive_bytes as f64 / tris,
+        t.mesh_bytes as f64 / tris,
         ms(t.build_median_split),
     );
     for tree in &t.trees {
         outln!(
             "  {}: build {:.1} ms; {} nodes, depth {}; memory {:.1} B/triangle = tree {:.1} \
-             (nodes {:.1}, leaves {:.1}) + primitive records",
+             (nodes {:.1}, leaves {:.1}) + primitive records {:.1}",
             tree.kind.name(),
             ms(tree.build),
             tree.nodes,
@@ -371,6 +375,7 @@ fn print_throughput(t: &Throughput, threads: usize) {
             tree.accel_bytes as f64 / tris,
             (tree.accel_bytes - tree.leaf_bytes) as f64 / tris,
             tree.leaf_bytes as f64 / tris,
+            t.primitive_bytes as f64 / tris,
         );
         for s in &tree.sets {
             outln!(

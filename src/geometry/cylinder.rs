@@ -17,7 +17,7 @@ const SIDE: f32 = 0.0;
 const TOP: f32 = 1.0;
 const BOTTOM: f32 = 2.0;
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Cylinder {
     pub center: Vec3,
     /// Unit axis.
@@ -46,7 +46,7 @@ impl Cylinder {
     }
 
     #[inline]
-    fn to_local(&self, frame: (Vec3, Vec3), v: Vec3) -> Vec3 {
+    fn in_frame(&self, frame: (Vec3, Vec3), v: Vec3) -> Vec3 {
         Vec3::new(v.dot(frame.0), v.dot(frame.1), v.dot(self.axis))
     }
 
@@ -64,8 +64,8 @@ impl Cylinder {
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Candidate> {
         let frame = self.frame();
-        let o = self.to_local(frame, ray.origin - self.center);
-        let d = self.to_local(frame, ray.dir);
+        let o = self.in_frame(frame, ray.origin - self.center);
+        let d = self.in_frame(frame, ray.dir);
         let (r, h) = (self.radius, self.half_height);
         let mut best: Option<Candidate> = None;
         let mut consider = |t: f32, part: f32| {
@@ -115,7 +115,7 @@ impl Cylinder {
     pub fn hit_with(&self, ray: &Ray, c: Candidate, prim: u32, want_uv: bool) -> Hit {
         let p = ray.at(c.t);
         let frame = self.frame();
-        let local = self.to_local(frame, p - self.center);
+        let local = self.in_frame(frame, p - self.center);
         let (r, h) = (self.radius, self.half_height);
         let (normal, point, uv);
         if c.aux[0] == SIDE {

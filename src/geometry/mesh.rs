@@ -29,6 +29,21 @@ pub struct Mesh {
 }
 
 impl Mesh {
+    /// Bytes of the buffers: positions, normals, texture coordinates and faces.
+    pub fn bytes(&self) -> usize {
+        let uv = match &self.uv {
+            MeshUv::PerVertex(uv) => std::mem::size_of_val(uv.as_slice()),
+            MeshUv::Strip => 0,
+        };
+        std::mem::size_of_val(self.positions.as_slice())
+            + self
+                .normals
+                .as_ref()
+                .map_or(0, |n| std::mem::size_of_val(n.as_slice()))
+            + uv
+            + std::mem::size_of_val(self.faces.as_slice())
+    }
+
     /// The vertex normals of a face, if the mesh has them.
     #[inline]
     pub fn vertex_normals(&self, face: usize) -> Option<[Vec3; 3]> {

@@ -1,5 +1,7 @@
-//! The shapes the renderer intersects. Every shape is a [`Primitive`] in one flat list (meshes are
-//! split into their triangles, a planar quad into two), so the accelerator sees one kind of thing.
+//! The shapes the renderer intersects. Every shape is a [`Primitive`] of one numbered list,
+//! [`Primitives`] (meshes are split into their triangles, a planar quad into two), so the
+//! accelerator sees one kind of thing; the triangles of large meshes are made from the mesh when
+//! asked for rather than stored.
 //!
 //! Intersection is two-phase: [`Shape::intersect`] finds only the ray parameter and a few
 //! shape-specific numbers (barycentrics, which part of a cylinder), cheap enough to run on every
@@ -12,12 +14,14 @@
 pub mod cylinder;
 pub mod mesh;
 pub mod plane;
+pub mod primitives;
 pub mod sphere;
 pub mod triangle;
 
 pub use cylinder::Cylinder;
 pub use mesh::{Mesh, MeshUv};
 pub use plane::Plane;
+pub use primitives::Primitives;
 pub use sphere::Sphere;
 pub use triangle::Triangle;
 
@@ -34,7 +38,7 @@ pub struct Candidate {
 }
 
 /// One intersectable shape.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Shape {
     Sphere(Sphere),
     Triangle(Triangle),
@@ -101,7 +105,7 @@ impl Shape {
 }
 
 /// A shape with its material.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Primitive {
     pub shape: Shape,
     /// Index into the scene's materials.

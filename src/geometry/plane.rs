@@ -17,7 +17,7 @@ use super::Candidate;
 use crate::math::{gamma, Vec2, Vec3};
 use crate::ray::{Hit, Ray};
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Plane {
     /// Unit normal.
     pub normal: Vec3,

@@ -14,7 +14,7 @@ use crate::accel::aabb::Aabb;
 use crate::math::{floor_f32, gamma, Vec2, Vec3};
 use crate::ray::{Hit, Ray};
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sphere {
     pub center: Vec3,
     pub radius: f32,

@@ -11,7 +11,7 @@ use crate::accel::aabb::Aabb;
 use crate::math::{gamma, Vec3};
 use crate::ray::{Hit, PreparedRay, Ray};
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Triangle {
     /// The corner positions (copied from the mesh for locality).
     pub p: [Vec3; 3],

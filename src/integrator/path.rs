@@ -131,13 +131,13 @@ impl<'a> PathTracer<'a> {
                 radiance += beta * scene.background;
                 break;
             };
-            let primitive = &scene.primitives[prim as usize];
+            let primitive = scene.primitives.get(prim);
             let material = &scene.materials[primitive.material as usize];
             let hit = primitive.hit_with(
                 &ray,
                 candidate,
                 prim,
-                &scene.meshes,
+                scene.primitives.meshes(),
                 material.texture.is_some(),
             );
             if let Some(light) = self.emitters.light_of(prim) {

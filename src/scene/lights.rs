@@ -28,7 +28,7 @@ use std::ops::Range;
 use super::error::{Location, SceneError, Warning};
 use super::json::Node;
 use super::load::{positive, required};
-use crate::geometry::{Primitive, Shape};
+use crate::geometry::{Primitive, Primitives, Shape};
 use crate::light::{cumulative_areas, Intensity, Light};
 use crate::math::Vec3;
 use crate::sampling::Method;
@@ -167,7 +167,7 @@ impl Emitters {
     pub(super) fn resolve(
         self,
         lights: &mut Vec<Light>,
-        primitives: &[Primitive],
+        primitives: &Primitives,
         warnings: &mut Vec<Warning>,
     ) -> Result<(), SceneError> {
         // Each id's first shape and how many shapes have it, in one pass (a scene can name
@@ -191,7 +191,7 @@ impl Emitters {
                     ),
                 });
             }
-            let prims = &primitives[shape.primitives.start as usize..shape.primitives.end as usize];
+            let prims = &primitives.range(shape.primitives.clone())[..];
             if prims.is_empty() {
                 warnings.push(Warning {
                     location: w.at.clone(),
@@ -235,7 +235,7 @@ impl Emitters {
             lights[w.light] = light;
         }
         for g in &self.glowing {
-            let prims = &primitives[g.primitives.start as usize..g.primitives.end as usize];
+            let prims = &primitives.range(g.primitives.clone())[..];
             let light = surface_light(
                 &g.kind,
                 prims,

@@ -27,7 +27,7 @@ use crate::camera::{Camera, Handedness, Lens};
 use crate::files::input::{self, SizeLimit};
 use crate::files::{raise_hint, shown};
 use crate::film::ToneMap;
-use crate::geometry::{Cylinder, Mesh, MeshUv, Plane, Primitive, Shape, Sphere, Triangle};
+use crate::geometry::{Cylinder, Mesh, MeshUv, Plane, Primitive, Primitives, Shape, Sphere};
 use crate::image_io::ReadLimits;
 use crate::light::{Falloff, Intensity, Light};
 use crate::material::{roughness_exponent, Material, Reflection};
@@ -154,8 +154,7 @@ pub fn load_str(text: &str, path: &Path, options: &LoadOptions) -> Result<Scene,
         textures: Vec::new(),
         texture_index: HashMap::new(),
         materials: Vec::new(),
-        meshes: Vec::new(),
-        primitives: Vec::new(),
+        primitives: Primitives::default(),
         lights: Vec::new(),
         ambient: None,
         variant: Variant::V2021,
@@ -314,8 +313,7 @@ struct Loader<'o> {
     /// Textures loaded so far, by file and uv offset (the offset's bits): each pair is stored once.
     texture_index: HashMap<(PathBuf, [u32; 2]), u32>,
     materials: Vec<Material>,
-    meshes: Vec<Mesh>,
-    primitives: Vec<Primitive>,
+    primitives: Primitives,
     lights: Vec<Light>,
     /// Ambient light given by the file (a scene key or a light of type `ambient`).
     ambient: Option<Vec3>,
@@ -502,8 +500,9 @@ impl<'o> Loader<'o> {
                 let first = self.primitives.len();
                 self.shape(&s, mode, &mut libraries)?;
                 self.emitters.shape(&s, first..self.primitives.len());
-                if let Some(p) = self.primitives.get(first) {
-                    let emission = self.materials[p.material as usize].emission;
+                if first < self.primitives.len() {
+                    let material = self.primitives.material(first as u32);
+                    let emission = self.materials[material as usize].emission;
                     if emission.max_element() > 0.0 {
                         self.emitters
                             .glowing(&s, first..self.primitives.len(), emission);
@@ -555,7 +554,6 @@ impl<'o> Loader<'o> {
             primitives: self.primitives,
             materials: self.materials,
             textures: self.textures,
-            meshes: self.meshes,
             has_transmissive,
             warnings: self.warnings,
             inputs: self.inputs,
@@ -1575,28 +1573,13 @@ impl<'o> Loader<'o> {
                 self.options.max_triangles
             )));
         }
-        let mesh_index = self.meshes.len() as u32;
-        for (i, f) in faces.iter().enumerate() {
-            let p = [
-                positions[f[0] as usize],
-                positions[f[1] as usize],
-                positions[f[2] as usize],
-            ];
-            self.primitives.push(Primitive {
-                shape: Shape::Triangle(Triangle {
-                    p,
-                    mesh: mesh_index,
-                    face: i as u32,
-                }),
-                material,
-            });
-        }
-        self.meshes.push(Mesh {
+        let mesh = Mesh {
             positions,
             normals,
             uv,
             faces,
-        });
+        };
+        self.primitives.push_mesh(mesh, material);
         Ok(())
     }
 

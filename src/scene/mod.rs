@@ -18,7 +18,7 @@ pub use load::{load, load_str, LoadOptions};
 
 use crate::camera::Camera;
 use crate::film::ToneMap;
-use crate::geometry::{Mesh, Primitive};
+use crate::geometry::Primitives;
 use crate::light::Light;
 use crate::material::{Material, Reflection};
 use crate::math::Vec3;
@@ -75,10 +75,10 @@ pub struct Scene {
     /// 8-bit output takes unless told otherwise (`--tonemap`).
     pub tone_map: Option<ToneMap>,
     pub lights: Vec<Light>,
-    pub primitives: Vec<Primitive>,
+    /// Every shape's primitives, with the meshes their triangles belong to.
+    pub primitives: Primitives,
     pub materials: Vec<Material>,
     pub textures: Vec<Texture>,
-    pub meshes: Vec<Mesh>,
     /// Whether any material transmits light (shadow rays must then look through it).
     pub has_transmissive: bool,
     /// What the loader skipped or guessed.

@@ -109,7 +109,7 @@ mod tests {
         };
         let r4 = Rays4::new(lanes(&|r| r.origin), lanes(&|r| r.dir));
         let got = r4.hit_sphere(sphere, Vec4::from_array(t_max));
-        let shape = Shape::Sphere(sphere.clone());
+        let shape = Shape::Sphere(*sphere);
         for (l, ray) in rays.iter().enumerate() {
             let want = shape
                 .intersect_prepared(&PreparedRay::new(ray), t_max[l])

@@ -107,7 +107,7 @@ mod tests {
         let pr = PreparedRay::new(ray);
         let h = block.intersect(&Ray4::new(&pr), t_max);
         assert_eq!(h.scalar, 0);
-        assert_twin(&h, &spheres.clone().map(Shape::Sphere), &pr, t_max);
+        assert_twin(&h, &spheres.map(Shape::Sphere), &pr, t_max);
         h.hit.count_ones()
     }
 

@@ -156,7 +156,7 @@ mod tests {
         let block = Triangle4::new([0, 1, 2, 3].map(|l| Some(&tris[l])));
         let pr = PreparedRay::new(ray);
         let h = block.intersect(&Ray4::new(&pr), t_max);
-        assert_twin(&h, &tris.clone().map(Shape::Triangle), &pr, t_max);
+        assert_twin(&h, &tris.map(Shape::Triangle), &pr, t_max);
         (h.hit.count_ones(), h.scalar.count_ones())
     }
 

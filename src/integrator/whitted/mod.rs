@@ -60,7 +60,7 @@ use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::accel::aabb::Aabb;
-use crate::accel::{reachable_from, Accel, Beam, Inside, Interiors};
+use crate::accel::{Accel, Beam, Inside, Interiors, Reachable};
 use crate::light::{Light, LightSample};
 use crate::material::{highlight, Reflection};
 use crate::math::{fresnel_dielectric, local_to_world, reflect, refract, Vec2, Vec3};
@@ -223,7 +223,7 @@ impl Passage {
         if surface.contains(&p) {
             return false;
         }
-        let material = &scene.materials[scene.primitives[p as usize].material as usize];
+        let material = &scene.materials[scene.primitives.material(p) as usize];
         let transmissive = material.is_transmissive();
         self.crosses |= transmissive;
         self.clear &= material.kt == 1.0;
@@ -279,7 +279,7 @@ pub struct Whitted<'a> {
     /// The candidates of the current light's beam, kept to reuse their memory.
     candidates: Vec<u32>,
     /// Of those, the ones a ray from either spawn origin may reach ([`Side`] as index).
-    reachable: [Vec<u32>; 2],
+    reachable: [Reachable; 2],
     /// Whether quad lights take their samples four at a time ([`quad_lanes`]); only the
     /// tests that hold the lanes to the one-sample loop turn it off.
     lanes: bool,
@@ -317,7 +317,7 @@ impl<'a> Whitted<'a> {
             open: Vec::new(),
             light_bounds: scene.lights.iter().map(Light::bounds).collect(),
             candidates: Vec::new(),
-            reachable: [Vec::new(), Vec::new()],
+            reachable: Default::default(),
             lanes: true,
             draws,
             light_cut,
@@ -429,9 +429,9 @@ impl<'a> Whitted<'a> {
         if scene.mode == RenderMode::Binary {
             return BINARY_HIT;
         }
-        let primitive = &scene.primitives[prim as usize];
+        let primitive = prims.get(prim);
         let material = &scene.materials[primitive.material as usize];
-        let hit = primitive.hit_with(ray, cand, prim, &scene.meshes, material.texture.is_some());
+        let hit = primitive.hit_with(ray, cand, prim, prims.meshes(), material.texture.is_some());
         let front = hit.normal.dot(ray.dir) < 0.0;
         let (n, ns) = if front {
             (hit.normal, hit.shading_normal)
@@ -600,9 +600,9 @@ impl<'a> Whitted<'a> {
             .map(|beam| {
                 for (side, out) in [Side::Above, Side::Below].into_iter().zip(&mut reachable) {
                     let origin = spawn.origin_on(side);
-                    reachable_from(&scene.primitives, &beam, &candidates, origin, out);
+                    out.fill(&scene.primitives, &beam, &candidates, origin);
                 }
-                [reachable[0].as_slice(), reachable[1].as_slice()]
+                [&reachable[0], &reachable[1]]
             });
         let done = match (quad, known, self.lanes) {
             (Some(quad), None, true) => {
@@ -645,7 +645,7 @@ impl<'a> Whitted<'a> {
         sample: &LightSample,
         share: f32,
         known: Option<f32>,
-        only: Option<[&[u32]; 2]>,
+        only: Option<[&Reachable; 2]>,
         cut: Option<f32>,
     ) {
         let to_light = sample.position - shading.point;
@@ -742,7 +742,7 @@ impl<'a> Whitted<'a> {
         from: &SpawnPoints,
         target: Vec3,
         surface: &Range<u32>,
-        only: Option<[&[u32]; 2]>,
+        only: Option<[&Reachable; 2]>,
     ) -> f32 {
         let scene = self.scene;
         let prims = &scene.primitives;
@@ -755,7 +755,7 @@ impl<'a> Whitted<'a> {
         let (ray, dist) = from.ray_from(side, target);
         let t_max = dist * (1.0 - LIGHT_CLEARANCE);
         let any = |blocks: &mut dyn FnMut(u32) -> bool| match only {
-            Some(candidates) => self.accel.any_of(prims, candidates, &ray, t_max, blocks),
+            Some(candidates) => candidates.any(&ray, t_max, blocks),
             None => self.accel.any(prims, &ray, t_max, blocks),
         };
         if !scene.has_transmissive {
@@ -791,7 +791,7 @@ impl<'a> Whitted<'a> {
             let Some((p, c)) = found else {
                 return through;
             };
-            let prim = &prims[p as usize];
+            let prim = &prims.get(p);
             let material = &scene.materials[prim.material as usize];
             if !surface.contains(&p) {
                 if !material.is_transmissive() {
@@ -799,7 +799,7 @@ impl<'a> Whitted<'a> {
                 }
                 through *= material.kt;
             }
-            let h = prim.hit_with(&ray, c, p, &scene.meshes, false);
+            let h = prim.hit_with(&ray, c, p, prims.meshes(), false);
             let spawn = h.spawn_points();
             let side = spawn.side_to(target);
             let (next, d) = spawn.ray_from(side, target);

@@ -14,6 +14,7 @@ use glam::Vec4;
 
 use super::Whitted;
 use crate::accel::kernels::Rays4;
+use crate::accel::Reachable;
 use crate::geometry::Shape;
 use crate::light::{Intensity, Light};
 use crate::material::highlight4;
@@ -202,7 +203,7 @@ impl Whitted<'_> {
         count: u32,
         share: f32,
         surface: &std::ops::Range<u32>,
-        reachable: Option<[&[u32]; 2]>,
+        reachable: Option<[&Reachable; 2]>,
     ) -> bool {
         let intensity = quad.intensity;
         let diffuse = s.kd_base * intensity.diffuse;
@@ -254,7 +255,7 @@ impl Whitted<'_> {
         target: [Vec4; 3],
         live: u32,
         surface: &std::ops::Range<u32>,
-        reachable: Option<[&[u32]; 2]>,
+        reachable: Option<[&Reachable; 2]>,
     ) -> [f32; 4] {
         let mut answer = [1.0f32; 4];
         let Some(reachable) = reachable else {
@@ -267,11 +268,10 @@ impl Whitted<'_> {
             return answer;
         };
         let scene = self.scene;
-        let prims = &scene.primitives;
         self.counts.shadow += live.count_ones() as u64;
         let rays = spawn.rays_to4(target);
         let t_max = rays.dist * Vec4::splat(1.0 - LIGHT_CLEARANCE);
-        // A bound that is NaN or not positive finds nothing (`Accel::any_of`): the answer is 1.
+        // A bound that is NaN or not positive finds nothing (`Reachable::any`): the answer is 1.
         let valid = live & t_max.cmpgt(Vec4::ZERO).bitmask();
         let rays4 = Rays4::new(rays.origin, rays.dir);
         // Lanes an opaque primitive stops.
@@ -286,12 +286,11 @@ impl Whitted<'_> {
             let mut passage = [Passage::default(); 4];
             // Each lane's ray, prepared for shapes the lanes do not test, when first needed.
             let mut prepared: [Option<PreparedRay>; 4] = [None; 4];
-            for &p in list.iter() {
+            for (p, shape) in list.iter() {
                 if open == 0 {
                     break;
                 }
-                let prim = &prims[p as usize];
-                let hit = match &prim.shape {
+                let hit = match shape {
                     Shape::Sphere(sphere) => rays4.hit_sphere(sphere, t_max) & open,
                     shape => (0..4)
                         .filter(|&l| open & (1 << l) != 0)
