@@ -17,7 +17,7 @@
 //! Primitive indices are reordered so that each leaf's are contiguous, in blocks of four tested in
 //! SIMD lanes (`accel/leaves.rs`).
 //!
-//! Both builders split the nodes of at least [`PARALLEL_MIN`] primitives and build their two
+//! Both builders split the nodes of at least `PARALLEL_MIN` primitives and build their two
 //! subtrees as two `rayon` tasks, then lay the parts out where the one-thread recursion puts
 //! them: the tree is the same, node for node, on any number of threads.
 //!

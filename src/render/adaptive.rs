@@ -3,7 +3,7 @@
 //!
 //! Round boundaries double: 4, 8, 16, … samples (fewer rounds for small `spp`), so a pixel that
 //! stops after round r holds exactly samples `0..n_r` of the full pattern. After every round from
-//! the [`FIRST_DECISION`]th sample on, the error of each pixel is estimated from two groups of its
+//! the `FIRST_DECISION`th sample on, the error of each pixel is estimated from two groups of its
 //! samples, after Dammertz et al. 2010 ("A hierarchical automatic stopping condition for Monte
 //! Carlo global illumination") and Cycles (Blender's `kernel/film/adaptive_sampling.h`): with `F`
 //! the mean of the `k` samples before the last round, `L` the mean of the last round's `n − k`,
@@ -68,7 +68,7 @@ const FIRST_ROUND: u32 = 4;
 /// half then takes 64 samples where 16 already agree.
 const FIRST_DECISION: u32 = 16;
 
-/// The sample counts at which rounds end: doubling from [`FIRST_ROUND`] up to `spp`.
+/// The sample counts at which rounds end: doubling from `FIRST_ROUND` up to `spp`.
 pub fn round_ends(spp: u32) -> Vec<u32> {
     let mut ends = Vec::new();
     let mut n = FIRST_ROUND.min(spp);

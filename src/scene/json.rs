@@ -832,7 +832,7 @@ pub struct Unread<'a, 't> {
     /// The member's value, with the member's path.
     pub node: Node<'a, 't>,
     /// The distinct names lookups asked the member's object for, in the order first asked
-    /// (the first [`MOST_NAMES_ASKED`] of them).
+    /// (the first `MOST_NAMES_ASKED` of them).
     pub asked: Rc<[Box<str>]>,
 }
 

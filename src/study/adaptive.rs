@@ -72,7 +72,7 @@ pub struct AdaptiveStudy {
     pub variance_samples: u32,
 }
 
-/// Renders, under seeds of their own, of [`VARIANCE_SAMPLES`] uniform Sobol pixel samples each:
+/// Renders, under seeds of their own, of `VARIANCE_SAMPLES` uniform Sobol pixel samples each:
 /// the spread of their pixels gives each pixel's variance for [`allocation_bound`].
 pub const VARIANCE_RENDERS: u64 = 8;
 const VARIANCE_SAMPLES: u32 = 16;
