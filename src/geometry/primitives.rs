@@ -220,6 +220,30 @@ impl Primitives {
         (0..self.len as u32).map(|i| self.get(i))
     }
 
+    /// Calls `f` with every primitive's shape, in order, walking the records and runs in turn:
+    /// no lookup per primitive and no record copied.
+    pub fn for_each_shape(&self, mut f: impl FnMut(&Shape)) {
+        if self.runs.is_empty() {
+            return self.records.iter().for_each(|r| f(&r.shape));
+        }
+        for (k, run) in self.runs.iter().enumerate() {
+            let count = self.runs.get(k + 1).map_or(self.len, |next| next.start) - run.start;
+            match run.source {
+                Source::Records { first } => {
+                    self.records[first..first + count]
+                        .iter()
+                        .for_each(|r| f(&r.shape));
+                }
+                Source::Faces { mesh, .. } => {
+                    let m = &self.meshes[mesh as usize];
+                    for face in 0..count as u32 {
+                        f(&Shape::Triangle(triangle(m, mesh, face)));
+                    }
+                }
+            }
+        }
+    }
+
     /// The primitives stored as records, with their numbers, in order: every shape but the
     /// triangles of large meshes (so every sphere, cylinder and plane).
     pub fn records(&self) -> impl Iterator<Item = (u32, &Primitive)> + '_ {
@@ -370,6 +394,9 @@ mod tests {
                 }
             }
             assert_eq!(prims.iter().collect::<Vec<_>>(), want);
+            let mut shapes = Vec::new();
+            prims.for_each_shape(|s| shapes.push(*s));
+            assert!(shapes.iter().eq(want.iter().map(|w| &w.shape)));
             let records: Vec<(u32, Primitive)> = prims.records().map(|(i, p)| (i, *p)).collect();
             let (mut number, mut want_records) = (0, Vec::new());
             for part in &parts {

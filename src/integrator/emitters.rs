@@ -62,11 +62,12 @@ fn point_intensity(light: &Light) -> Vec3 {
 
 impl Emitters {
     pub fn new(scene: &Scene) -> Emitters {
-        let bounds = scene
-            .primitives
-            .iter()
-            .filter(|p| p.shape.is_bounded())
-            .fold(Aabb::EMPTY, |b, p| b.union(p.shape.bounds()));
+        let mut bounds = Aabb::EMPTY;
+        scene.primitives.for_each_shape(|s| {
+            if s.is_bounded() {
+                bounds = bounds.union(s.bounds());
+            }
+        });
         let bounds = if bounds.min.x <= bounds.max.x {
             bounds
         } else {
