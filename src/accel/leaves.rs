@@ -212,27 +212,20 @@ impl Leaves {
                     for j in lanes.iter_mut() {
                         *j = order[*j as usize];
                     }
+                    let lane: [Option<Shape>; 4] =
+                        std::array::from_fn(|l| lanes.get(l).map(|&p| prims.shape(p).into_owned()));
                     let rows = match k {
+                        Kind::Triangle => Triangle4::new(lane.each_ref().map(|s| match s {
+                            Some(Shape::Triangle(t)) => Some(t),
+                            _ => None,
+                        }))
+                        .rows(),
+                        Kind::Sphere => Sphere4::new(lane.each_ref().map(|s| match s {
+                            Some(Shape::Sphere(s)) => Some(s),
+                            _ => None,
+                        }))
+                        .rows(),
                         Kind::Other => Block::EMPTY.shapes,
-                        _ => {
-                            let lane: [Option<Shape>; 4] = std::array::from_fn(|l| {
-                                lanes.get(l).map(|&p| prims.shape(p).into_owned())
-                            });
-                            match k {
-                                Kind::Triangle => {
-                                    Triangle4::new(lane.each_ref().map(|s| match s {
-                                        Some(Shape::Triangle(t)) => Some(t),
-                                        _ => None,
-                                    }))
-                                    .rows()
-                                }
-                                _ => Sphere4::new(lane.each_ref().map(|s| match s {
-                                    Some(Shape::Sphere(s)) => Some(s),
-                                    _ => None,
-                                }))
-                                .rows(),
-                            }
-                        }
                     };
                     lanes.resize(4, PAD);
                     blocks.push(Block::new(k, rows, &lanes));

@@ -41,6 +41,17 @@ struct Run {
     source: Source,
 }
 
+/// Where a primitive is stored.
+enum Slot<'a> {
+    Record(&'a Primitive),
+    /// Face `face` of mesh `mesh`, of material `material`.
+    Face {
+        mesh: u32,
+        face: u32,
+        material: u32,
+    },
+}
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Source {
     /// Records from index `first` on.
@@ -140,19 +151,45 @@ impl Primitives {
         self.meshes.push(mesh);
     }
 
-    /// The run holding primitive `i`, and `i`'s offset in it. Only called with runs.
-    #[inline]
-    fn run_of(&self, i: usize) -> (Source, usize) {
-        let r = self.runs[self.runs.partition_point(|r| r.start <= i) - 1];
-        (r.source, i - r.start)
+    /// Where primitive `i` is stored: the fast path for a list of records only is inlined, the
+    /// lookup through runs kept out of line so that the callers' tests stay small.
+    #[inline(always)]
+    fn slot(&self, i: u32) -> Slot<'_> {
+        match self.runs.is_empty() {
+            true => Slot::Record(&self.records[i as usize]),
+            false => self.slot_in_runs(i as usize),
+        }
+    }
+
+    /// [`Primitives::slot`] where there are runs: the run holding `i`, found by bisection.
+    #[inline(never)]
+    fn slot_in_runs(&self, i: usize) -> Slot<'_> {
+        assert!(i < self.len, "primitive {i} is past the end ({})", self.len);
+        let run = self.runs[self.runs.partition_point(|r| r.start <= i) - 1];
+        let k = i - run.start;
+        match run.source {
+            Source::Records { first } => Slot::Record(&self.records[first + k]),
+            Source::Faces { mesh, material } => Slot::Face {
+                mesh,
+                face: k as u32,
+                material,
+            },
+        }
     }
 
     /// Primitive `i` (a triangle of a run is made from its mesh). Panics if `i ≥ len()`.
     #[inline(always)]
     pub fn get(&self, i: u32) -> Primitive {
-        match self.runs.is_empty() {
-            true => self.records[i as usize],
-            false => self.get_in_runs(i as usize),
+        match self.slot(i) {
+            Slot::Record(r) => *r,
+            Slot::Face {
+                mesh,
+                face,
+                material,
+            } => Primitive {
+                shape: self.face(mesh, face),
+                material,
+            },
         }
     }
 
@@ -160,59 +197,48 @@ impl Primitives {
     /// intersection tests read, without copying a record.
     #[inline(always)]
     pub fn shape(&self, i: u32) -> Cow<'_, Shape> {
-        match self.runs.is_empty() {
-            true => Cow::Borrowed(&self.records[i as usize].shape),
-            false => self.shape_in_runs(i as usize),
+        match self.slot(i) {
+            Slot::Record(r) => Cow::Borrowed(&r.shape),
+            Slot::Face { mesh, face, .. } => Cow::Owned(self.face(mesh, face)),
         }
     }
 
     /// The material of primitive `i`, without making its shape.
     #[inline(always)]
     pub fn material(&self, i: u32) -> u32 {
-        match self.runs.is_empty() {
-            true => self.records[i as usize].material,
-            false => match self.run_of(i as usize) {
-                (Source::Records { first }, k) => self.records[first + k].material,
-                (Source::Faces { material, .. }, _) => material,
-            },
-        }
-    }
-
-    /// [`Primitives::get`] where there are runs: kept out of line, so that the test of a scene
-    /// of records only stays small.
-    #[inline(never)]
-    fn get_in_runs(&self, i: usize) -> Primitive {
-        let material = self.material(i as u32);
-        Primitive {
-            shape: self.shape_in_runs(i).into_owned(),
-            material,
-        }
-    }
-
-    /// [`Primitives::shape`] where there are runs.
-    #[inline(never)]
-    fn shape_in_runs(&self, i: usize) -> Cow<'_, Shape> {
-        assert!(i < self.len, "primitive {i} is past the end ({})", self.len);
-        match self.run_of(i) {
-            (Source::Records { first }, k) => Cow::Borrowed(&self.records[first + k].shape),
-            (Source::Faces { mesh, .. }, face) => Cow::Owned(Shape::Triangle(triangle(
-                &self.meshes[mesh as usize],
-                mesh,
-                face as u32,
-            ))),
+        match self.slot(i) {
+            Slot::Record(r) => r.material,
+            Slot::Face { material, .. } => material,
         }
     }
 
     /// The record of primitive `i`, or `None` for a triangle of a run (made from its mesh).
     #[inline]
     pub fn record(&self, i: u32) -> Option<&Primitive> {
-        match self.runs.is_empty() {
-            true => Some(&self.records[i as usize]),
-            false => match self.run_of(i as usize) {
-                (Source::Records { first }, k) => Some(&self.records[first + k]),
-                (Source::Faces { .. }, _) => None,
-            },
+        match self.slot(i) {
+            Slot::Record(r) => Some(r),
+            Slot::Face { .. } => None,
         }
+    }
+
+    /// Face `face` of mesh `mesh` as a triangle shape.
+    #[inline]
+    fn face(&self, mesh: u32, face: u32) -> Shape {
+        Shape::Triangle(triangle(&self.meshes[mesh as usize], mesh, face))
+    }
+
+    /// The runs with their extents, `(start, count, source)` in order; one run of records when
+    /// there are no runs.
+    fn spans(&self) -> impl Iterator<Item = (usize, usize, Source)> + '_ {
+        let whole = self
+            .runs
+            .is_empty()
+            .then_some((0, self.len, Source::Records { first: 0 }));
+        let runs = self.runs.iter().enumerate().map(|(k, r)| {
+            let end = self.runs.get(k + 1).map_or(self.len, |next| next.start);
+            (r.start, end - r.start, r.source)
+        });
+        whole.into_iter().chain(runs)
     }
 
     /// Every primitive, in order.
@@ -223,22 +249,15 @@ impl Primitives {
     /// Calls `f` with every primitive's shape, in order, walking the records and runs in turn:
     /// no lookup per primitive and no record copied.
     pub fn for_each_shape(&self, mut f: impl FnMut(&Shape)) {
-        if self.runs.is_empty() {
-            return self.records.iter().for_each(|r| f(&r.shape));
-        }
-        for (k, run) in self.runs.iter().enumerate() {
-            let count = self.runs.get(k + 1).map_or(self.len, |next| next.start) - run.start;
-            match run.source {
+        for (_, count, source) in self.spans() {
+            match source {
                 Source::Records { first } => {
                     self.records[first..first + count]
                         .iter()
                         .for_each(|r| f(&r.shape));
                 }
                 Source::Faces { mesh, .. } => {
-                    let m = &self.meshes[mesh as usize];
-                    for face in 0..count as u32 {
-                        f(&Shape::Triangle(triangle(m, mesh, face)));
-                    }
+                    (0..count as u32).for_each(|face| f(&self.face(mesh, face)));
                 }
             }
         }
@@ -247,25 +266,13 @@ impl Primitives {
     /// The primitives stored as records, with their numbers, in order: every shape but the
     /// triangles of large meshes (so every sphere, cylinder and plane).
     pub fn records(&self) -> impl Iterator<Item = (u32, &Primitive)> + '_ {
-        let whole = self.runs.is_empty().then_some((0, 0, self.records.len()));
-        let runs = self
-            .runs
-            .iter()
-            .enumerate()
-            .filter_map(|(k, r)| match r.source {
-                Source::Records { first } => {
-                    let end = self.runs.get(k + 1).map_or(self.len, |next| next.start);
-                    Some((r.start, first, end - r.start))
-                }
-                Source::Faces { .. } => None,
-            });
-        whole
-            .into_iter()
-            .chain(runs)
-            .flat_map(|(start, first, count)| {
-                let numbers = start as u32..(start + count) as u32;
-                numbers.zip(&self.records[first..first + count])
-            })
+        self.spans().flat_map(|(start, count, source)| {
+            let records = match source {
+                Source::Records { first } => &self.records[first..first + count],
+                Source::Faces { .. } => &[],
+            };
+            (start as u32..).zip(records)
+        })
     }
 
     /// The numbers of the unbounded primitives (planes, all records), in order.
