@@ -112,6 +112,19 @@ fn mixed_scene(n: usize, seed: u64) -> Vec<Primitive> {
     prims
 }
 
+/// A mesh whose faces are `corners` taken three at a time (no vertex shared).
+fn soup(corners: Vec<Vec3>) -> Mesh {
+    let faces = (0..corners.len() as u32 / 3)
+        .map(|f| [3 * f, 3 * f + 1, 3 * f + 2])
+        .collect();
+    Mesh {
+        positions: corners,
+        normals: None,
+        uv: MeshUv::Strip,
+        faces,
+    }
+}
+
 /// A `g×g` grid of UV spheres of `s×s` quads (two triangles each, degenerate at the poles) on a
 /// ground quad: the benchmark scene's layout, small.
 fn mesh_scene(g: u32, s: u32) -> Primitives {
@@ -147,18 +160,10 @@ fn mesh_scene(g: u32, s: u32) -> Primitives {
     }
     // Two meshes, stored both ways: the ground's two faces as records, the balls' faces as a
     // run (as a large mesh's are), whose triangles are made from the mesh when asked for.
-    let mesh = |positions: Vec<Vec3>, faces| Mesh {
-        positions,
-        normals: None,
-        uv: MeshUv::Strip,
-        faces,
-    };
-    let faces = (0..balls.len() as u32 / 3)
-        .map(|f| [3 * f, 3 * f + 1, 3 * f + 2])
-        .collect();
     let mut prims = Primitives::default();
-    prims.push_mesh(mesh(ground.to_vec(), vec![[0, 1, 2], [0, 2, 3]]), 0);
-    prims.push_faces(mesh(balls, faces), 0);
+    let [a, b, c, d] = ground;
+    prims.push_mesh(soup(vec![a, b, c, a, c, d]), 0);
+    prims.push_faces(soup(balls), 0);
     prims
 }
 
@@ -614,16 +619,7 @@ fn reachable_candidates_answer_every_shadow_ray_from_their_origin() {
             floor.extend([p(0.0, 0.0), p(cell, cell), p(0.0, cell)]);
         }
     }
-    let faces = (0..floor.len() as u32 / 3)
-        .map(|f| [3 * f, 3 * f + 1, 3 * f + 2])
-        .collect();
-    let floor = Mesh {
-        positions: floor,
-        normals: None,
-        uv: MeshUv::Strip,
-        faces,
-    };
-    prims.push_faces(floor, 0);
+    prims.push_faces(soup(floor), 0);
     let w = |y: f32, z: f32| Vec3::new(4.5, y, z);
     prims.push(tri(w(-4.0, -4.0), w(6.0, -4.0), w(6.0, 4.0)));
     prims.push(tri(w(-4.0, -4.0), w(6.0, 4.0), w(-4.0, 4.0)));

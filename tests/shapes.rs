@@ -225,20 +225,11 @@ fn rectangle_xy_xz_and_yz_span_their_ranges_with_upright_uvs() {
         .position(|p| *p == Vec3::new(-0.7, -0.2, -0.4))
         .unwrap();
     assert_eq!(uv[i], Vec2::ZERO);
-    assert!(s.primitives.meshes()[1]
-        .positions
-        .iter()
-        .all(|p| p.y == 1.0));
-    assert!(s.primitives.meshes()[1]
-        .positions
-        .contains(&Vec3::new(5.0, 1.0, 5.0)));
-    assert!(s.primitives.meshes()[2]
-        .positions
-        .iter()
-        .all(|p| p.x == 7.0));
-    assert!(s.primitives.meshes()[2]
-        .positions
-        .contains(&Vec3::new(7.0, 2.0, 3.0)));
+    let meshes = s.primitives.meshes();
+    assert!(meshes[1].positions.iter().all(|p| p.y == 1.0));
+    assert!(meshes[1].positions.contains(&Vec3::new(5.0, 1.0, 5.0)));
+    assert!(meshes[2].positions.iter().all(|p| p.x == 7.0));
+    assert!(meshes[2].positions.contains(&Vec3::new(7.0, 2.0, 3.0)));
 }
 
 #[test]
