@@ -194,19 +194,30 @@ pub fn tonemap(c: Vec3, map: ToneMap, exposure: f32) -> Vec3 {
 
 /// A display value in [0, 1] as a byte. The coursework's linear mapping truncates (`⌊v·255⌋`:
 /// the official render stores the background 0.01 as 2, not 3); the other maps round to nearest
-/// (`⌊v·255 + 0.5⌋`).
-fn to_byte(v: f32, map: ToneMap) -> u8 {
-    let bias = if map == ToneMap::Linear { 0.0 } else { 0.5 };
-    crate::math::floor_f32(v * 255.0 + bias).clamp(0.0, 255.0) as u8
+/// (`⌊v·255 + 0.5⌋`). `v·255 + bias` is never negative, so the conversion's truncation is the
+/// floor (and NaN, which `tonemap_channel` never returns, would give 0).
+#[inline]
+fn to_byte(v: f32, bias: f32) -> u8 {
+    (v * 255.0 + bias).clamp(0.0, 255.0) as u8
+}
+
+/// The rounding bias of [`to_byte`] for `map`.
+fn byte_bias(map: ToneMap) -> f32 {
+    if map == ToneMap::Linear {
+        0.0
+    } else {
+        0.5
+    }
 }
 
 /// 8-bit RGB bytes of the film (see `to_byte` for the quantisation):
 /// `3 * width * height` bytes, row-major from the top row, R, G, B per pixel.
 pub fn to_rgb8(film: &Film, map: ToneMap, exposure: f32) -> Vec<u8> {
+    let bias = byte_bias(map);
+    let byte = |x: f32| to_byte(tonemap_channel(x, map, exposure), bias);
     let mut out = Vec::with_capacity(film.pixels.len() * 3);
-    for &p in &film.pixels {
-        let t = tonemap(p, map, exposure);
-        out.extend_from_slice(&[to_byte(t.x, map), to_byte(t.y, map), to_byte(t.z, map)]);
+    for p in &film.pixels {
+        out.extend_from_slice(&p.to_array().map(byte));
     }
     out
 }
@@ -224,6 +235,24 @@ mod tests {
         assert_eq!(v.x, v.y);
         assert_eq!(v.y, v.z);
         v.x
+    }
+
+    /// The byte conversion is the floor of `v·255 + bias`, clamped, for display values across
+    /// [0, 1] (every 997th float there, and the ends).
+    #[test]
+    fn to_byte_is_the_floor_of_the_scaled_value() {
+        let values = (0..=1.0f32.to_bits())
+            .step_by(997)
+            .map(f32::from_bits)
+            .chain([0.0, 1.0, 0.01, 0.5 / 255.0, 254.5 / 255.0]);
+        for v in values {
+            for bias in [0.0, 0.5] {
+                let want = crate::math::floor_f32(v * 255.0 + bias).clamp(0.0, 255.0) as u8;
+                assert_eq!(to_byte(v, bias), want, "{v} + {bias}");
+            }
+        }
+        assert_eq!(to_byte(1.0, 0.5), 255);
+        assert_eq!(to_byte(0.01, 0.0), 2);
     }
 
     #[test]
