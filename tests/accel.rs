@@ -685,6 +685,75 @@ fn reachable_candidates_answer_every_shadow_ray_from_their_origin() {
     );
 }
 
+/// A light buffer's candidates for a shading point's beam answer every shadow ray of the beam
+/// as testing every primitive does, in every accelerator the buffer is gathered through; most
+/// points are served from the buffer, with lists about as short as the tree's walk gives.
+#[test]
+fn light_buffer_candidates_answer_every_shadow_ray_of_the_beam() {
+    use raytracer::accel::light_buffer::scene_bounds;
+    use raytracer::accel::{Beam, LightBuffer};
+    let mut prims = Primitives::from(mixed_scene(80, 17));
+    prims.push(plane(Vec3::new(0.0, 1.0, 0.0), -4.5));
+    let bounds = scene_bounds(&prims);
+    let list = Accel::List;
+    let mut rng = Rng(0x11b);
+    let (mut rays, mut blocked, mut points, mut served) = (0usize, 0usize, 0usize, 0usize);
+    let (mut from_buffer, mut from_tree) = (Vec::new(), Vec::new());
+    let (mut buffer_len, mut tree_len) = (0usize, 0usize);
+    for (name, accel) in accelerators(&prims) {
+        for _ in 0..6 {
+            let light = light_box(&mut rng);
+            let radius = 0.5 * (light.max - light.min).length();
+            let buffer = LightBuffer::new(light.center(), radius, &prims, &accel, &bounds);
+            for k in 0..150 {
+                let point = rng.vec(Vec3::splat(-4.0), Vec3::new(4.0, 2.0, 4.0));
+                // Origins offset as spawned ones are, and (every tenth point) farther than the
+                // buffer serves.
+                let offset = if k % 10 == 0 {
+                    2.0 * buffer.max_offset()
+                } else {
+                    buffer.max_offset() * rng.next()
+                };
+                let Some(beam) = Beam::new(point, &light, offset) else {
+                    continue;
+                };
+                points += 1;
+                let limit = usize::MAX;
+                let got = buffer.beam_candidates(&beam, point, offset, limit, &mut from_buffer);
+                if k % 10 == 0 {
+                    assert_eq!(got, None, "{name}: an offset past the buffer's");
+                    continue;
+                }
+                let Some(complete) = got else { continue };
+                assert!(complete);
+                served += 1;
+                assert!(accel.beam_candidates(&prims, &beam, limit, &mut from_tree));
+                buffer_len += from_buffer.len();
+                tree_len += from_tree.len();
+                let candidates = Reachable::all(&prims, &from_buffer);
+                for _ in 0..20 {
+                    let origin = point + rng.dir() * offset * rng.next();
+                    let (ray, t_max) = shadow_ray(origin, rng.vec(light.min, light.max));
+                    let want = list.any(&prims, &ray, t_max, |_| true);
+                    assert_eq!(
+                        candidates.any(&ray, t_max, |_| true),
+                        want,
+                        "{name}: {ray:?}"
+                    );
+                    rays += 1;
+                    blocked += want as usize;
+                }
+            }
+        }
+    }
+    assert!(blocked > rays / 20 && blocked < rays, "{blocked} of {rays}");
+    assert!(served > points / 2, "{served} of {points} points served");
+    assert!(
+        buffer_len <= tree_len + tree_len / 4,
+        "{buffer_len} against {tree_len}"
+    );
+}
+
 /// Rays that start inside a sphere (spawned below its surface, as refracted and internally
 /// reflected rays are) get from `Interiors` exactly the list's answer: spheres resting on a floor
 /// of triangles, touching each other, cut by a triangle, holding a smaller sphere, and alone,

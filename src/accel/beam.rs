@@ -173,8 +173,13 @@ impl Beam {
         let half = Vec4::splat(0.5);
         let center = [0, 1, 2].map(|a| half * (lo[a] + hi[a]));
         let e = [0, 1, 2].map(|a| hi[a] - lo[a]);
-        let radius = half * sqrt4(dot4(&e, &e));
-        // `may_hit_ball`, lane by lane.
+        self.may_hit_balls4(center, half * sqrt4(dot4(&e, &e)))
+    }
+
+    /// [`Beam::may_hit_ball`] of four balls (per axis, one lane per centre), lane by lane the
+    /// same operations: bit `l` is set where ball `l` may be met.
+    #[inline(always)]
+    pub fn may_hit_balls4(&self, center: [Vec4; 3], radius: Vec4) -> u32 {
         let r = radius * Vec4::splat(1.0 + SLACK) + Vec4::splat(self.grow);
         let apex = self.apex.to_array();
         let v = [0, 1, 2].map(|a| center[a] - Vec4::splat(apex[a]));

@@ -19,6 +19,7 @@ pub mod bvh;
 pub mod interior;
 pub mod kernels;
 mod leaves;
+pub mod light_buffer;
 pub mod reachable;
 pub mod stack;
 mod traverse;
@@ -27,10 +28,12 @@ pub mod wide;
 pub use beam::Beam;
 pub use bvh::{Bvh, BvhOptions, BvhStats, Split};
 pub use interior::{Inside, Interiors};
+pub use light_buffer::LightBuffer;
 pub use reachable::Reachable;
 pub use wide::{Bvh4, Bvh8};
 
 use crate::geometry::{Candidate, Primitives, Shape};
+use crate::math::Vec3;
 use crate::ray::{PreparedRay, Ray};
 use aabb::Aabb;
 
@@ -307,9 +310,19 @@ pub(crate) fn gather(
 /// their box's, unbounded ones always.
 #[inline]
 pub(crate) fn may_hit(beam: &Beam, shape: &Shape) -> bool {
+    ball_of(shape).is_none_or(|(center, radius)| beam.may_hit_ball(center, radius))
+}
+
+/// The ball [`may_hit`] tests `shape` by: a sphere's own, the bounding ball of another bounded
+/// shape's box ([`Beam::may_hit_box`]'s); `None` for an unbounded shape.
+#[inline]
+pub(crate) fn ball_of(shape: &Shape) -> Option<(Vec3, f32)> {
     match shape {
-        Shape::Sphere(s) => beam.may_hit_ball(s.center, s.radius.abs()),
-        Shape::Plane(_) => true,
-        Shape::Triangle(_) | Shape::Cylinder(_) => beam.may_hit_box(&shape.bounds()),
+        Shape::Sphere(s) => Some((s.center, s.radius.abs())),
+        Shape::Plane(_) => None,
+        Shape::Triangle(_) | Shape::Cylinder(_) => {
+            let b = shape.bounds();
+            Some((b.center(), 0.5 * (b.max - b.min).length()))
+        }
     }
 }

@@ -17,7 +17,7 @@ pub mod whitted;
 
 use std::sync::atomic::AtomicBool;
 
-use crate::accel::{Accel, Interiors};
+use crate::accel::{Accel, Interiors, LightBuffer};
 use crate::light::Light;
 use crate::math::Vec3;
 use crate::ray::Ray;
@@ -86,6 +86,8 @@ pub struct Integrator<'a> {
     emitters: Option<emitters::Emitters>,
     /// The Whitted tracer's quick answers for rays inside glass spheres.
     interiors: Interiors,
+    /// The Whitted tracer's light buffers, per light (see [`whitted::light_buffers`]).
+    light_buffers: Vec<Option<LightBuffer>>,
 }
 
 impl<'a> Integrator<'a> {
@@ -97,6 +99,10 @@ impl<'a> Integrator<'a> {
             interiors: match kind {
                 Kind::Whitted => whitted::interiors(scene, accel),
                 Kind::Path => Interiors::default(),
+            },
+            light_buffers: match kind {
+                Kind::Whitted => whitted::light_buffers(scene, accel),
+                Kind::Path => Vec::new(),
             },
         }
     }
@@ -114,7 +120,8 @@ impl<'a> Integrator<'a> {
         match &self.emitters {
             None => {
                 let mut w =
-                    Whitted::new(self.scene, self.accel, &self.interiors, max_depth, options);
+                    Whitted::new(self.scene, self.accel, &self.interiors, max_depth, options)
+                        .with_light_buffers(&self.light_buffers);
                 w.cancel = cancel;
                 Tracer::Whitted(w)
             }

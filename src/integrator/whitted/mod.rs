@@ -60,7 +60,8 @@ use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::accel::aabb::Aabb;
-use crate::accel::{Accel, Beam, Inside, Interiors, Reachable};
+use crate::accel::light_buffer::scene_bounds;
+use crate::accel::{Accel, Beam, Inside, Interiors, LightBuffer, Reachable};
 use crate::light::{Light, LightSample};
 use crate::material::{highlight, Reflection};
 use crate::math::{fresnel_dielectric, local_to_world, reflect, refract, Vec2, Vec3};
@@ -125,6 +126,25 @@ pub fn interiors(scene: &Scene, accel: &Accel) -> Interiors {
     Interiors::new(&scene.primitives, accel, |p| {
         scene.materials[p.material as usize].is_transmissive()
     })
+}
+
+/// Per light, the [`LightBuffer`] that stands in for the tree's walk when gathering a shading
+/// point's beam candidates: for every light with a box of samples (the area lights); `None` for
+/// point lights, and empty for a scene without area lights.
+pub fn light_buffers(scene: &Scene, accel: &Accel) -> Vec<Option<LightBuffer>> {
+    if scene.lights.iter().all(|l| l.bounds().is_none()) {
+        return Vec::new();
+    }
+    let bounds = scene_bounds(&scene.primitives);
+    let buffer = |b: Aabb| {
+        let radius = 0.5 * (b.max - b.min).length();
+        LightBuffer::new(b.center(), radius, &scene.primitives, accel, &bounds)
+    };
+    scene
+        .lights
+        .iter()
+        .map(|l| l.bounds().map(buffer))
+        .collect()
 }
 
 /// The light terms a shading point leaves untraced under the cut-off are below
@@ -276,6 +296,9 @@ pub struct Whitted<'a> {
     open: Vec<Open>,
     /// Per light, the box its samples lie in (for [`Beam`]s); `None` for point lights.
     light_bounds: Vec<Option<Aabb>>,
+    /// Per light, the light buffer its beams' candidates come from, where it has one
+    /// ([`light_buffers`]; none unless given, [`Whitted::with_light_buffers`]).
+    light_buffers: &'a [Option<LightBuffer>],
     /// The candidates of the current light's beam, kept to reuse their memory.
     candidates: Vec<u32>,
     /// Of those, the ones a ray from either spawn origin may reach ([`Side`] as index).
@@ -316,12 +339,21 @@ impl<'a> Whitted<'a> {
             budget: MAX_SECONDARY_RAYS_PER_SAMPLE,
             open: Vec::new(),
             light_bounds: scene.lights.iter().map(Light::bounds).collect(),
+            light_buffers: &[],
             candidates: Vec::new(),
             reachable: Default::default(),
             lanes: true,
             draws,
             light_cut,
         }
+    }
+
+    /// The tracer gathering its beams' candidates from `buffers` ([`light_buffers`] of the same
+    /// scene and accelerator) where they have a list: the same candidates' answers, without a
+    /// walk of the tree at every shading point.
+    pub fn with_light_buffers(mut self, buffers: &'a [Option<LightBuffer>]) -> Whitted<'a> {
+        self.light_buffers = buffers;
+        self
     }
 
     /// Whether [`Whitted::cancel`] is set.
@@ -590,12 +622,18 @@ impl<'a> Whitted<'a> {
             .flatten()
             .and_then(|b| Beam::new(shading.point, &b, spawn.offset()))
             .filter(|beam| {
-                self.accel.beam_candidates(
-                    &scene.primitives,
-                    beam,
-                    BEAM_CANDIDATE_LIMIT,
-                    &mut candidates,
-                )
+                let prims = &scene.primitives;
+                let limit = BEAM_CANDIDATE_LIMIT;
+                let buffer = self.light_buffers.get(li).and_then(Option::as_ref);
+                buffer
+                    .and_then(|b| {
+                        let (point, offset) = (shading.point, spawn.offset());
+                        b.beam_candidates(beam, point, offset, limit, &mut candidates)
+                    })
+                    .unwrap_or_else(|| {
+                        self.accel
+                            .beam_candidates(prims, beam, limit, &mut candidates)
+                    })
             })
             .map(|beam| {
                 for (side, out) in [Side::Above, Side::Below].into_iter().zip(&mut reachable) {
