@@ -269,6 +269,9 @@ impl Whitted<'_> {
         };
         let scene = self.scene;
         self.counts.shadow += live.count_ones() as u64;
+        if reachable.iter().all(|list| list.is_empty()) {
+            return answer; // nothing any ray could meet: what the loop below finds
+        }
         let rays = spawn.rays_to4(target);
         let t_max = rays.dist * Vec4::splat(1.0 - LIGHT_CLEARANCE);
         // A bound that is NaN or not positive finds nothing (`Reachable::any`): the answer is 1.
