@@ -4,7 +4,6 @@
 //! over and over (every sample, or every four), so the shapes are read in order without looking
 //! them up: a triangle of a large mesh is made from the mesh once per list, not once per test.
 
-use super::aabb::Aabb;
 use super::Beam;
 use crate::geometry::{Primitives, Shape};
 use crate::math::Vec3;
@@ -24,22 +23,45 @@ impl Reachable {
     /// ([`Beam::leaves_plane_behind`]). Testing only these answers every such ray as testing all
     /// the candidates does.
     pub fn fill(&mut self, prims: &Primitives, beam: &Beam, candidates: &[u32], origin: Vec3) {
-        self.numbers.clear();
-        self.shapes.clear();
+        Reachable::fill_each(
+            std::slice::from_mut(self),
+            prims,
+            beam,
+            candidates,
+            &[origin],
+        );
+    }
+
+    /// [`Reachable::fill`] of each of `lists` with the ray origin of the same place in
+    /// `origins`, looking each candidate up once for all of them.
+    pub fn fill_each(
+        lists: &mut [Reachable],
+        prims: &Primitives,
+        beam: &Beam,
+        candidates: &[u32],
+        origins: &[Vec3],
+    ) {
+        debug_assert_eq!(lists.len(), origins.len());
+        for list in lists.iter_mut() {
+            list.numbers.clear();
+            list.shapes.clear();
+        }
         for &p in candidates {
             let shape = prims.shape(p);
-            let behind = |b: &Aabb| beam.leaves_behind(origin, b);
-            let left_behind = match &*shape {
-                Shape::Plane(_) => false,
-                Shape::Triangle(t) => {
-                    let b = t.bounds();
-                    behind(&b) || beam.leaves_plane_behind(origin, &b)
-                }
-                Shape::Sphere(_) | Shape::Cylinder(_) => behind(&shape.bounds()),
+            // The box a leaving ray may leave behind, and whether the shape lies in its plane.
+            let bounds = match &*shape {
+                Shape::Plane(_) => None,
+                Shape::Triangle(t) => Some((t.bounds(), true)),
+                Shape::Sphere(_) | Shape::Cylinder(_) => Some((shape.bounds(), false)),
             };
-            if !left_behind {
-                self.numbers.push(p);
-                self.shapes.push(shape.into_owned());
+            for (list, &origin) in lists.iter_mut().zip(origins) {
+                let left_behind = bounds.is_some_and(|(b, flat)| {
+                    beam.leaves_behind(origin, &b) || flat && beam.leaves_plane_behind(origin, &b)
+                });
+                if !left_behind {
+                    list.numbers.push(p);
+                    list.shapes.push(*shape);
+                }
             }
         }
     }

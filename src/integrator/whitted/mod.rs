@@ -636,10 +636,14 @@ impl<'a> Whitted<'a> {
                     })
             })
             .map(|beam| {
-                for (side, out) in [Side::Above, Side::Below].into_iter().zip(&mut reachable) {
-                    let origin = spawn.origin_on(side);
-                    out.fill(&scene.primitives, &beam, &candidates, origin);
-                }
+                let origins = [Side::Above, Side::Below].map(|side| spawn.origin_on(side));
+                Reachable::fill_each(
+                    &mut reachable,
+                    &scene.primitives,
+                    &beam,
+                    &candidates,
+                    &origins,
+                );
                 [&reachable[0], &reachable[1]]
             });
         let done = match (quad, known, self.lanes) {
