@@ -215,9 +215,11 @@ fn byte_bias(map: ToneMap) -> f32 {
 pub fn to_rgb8(film: &Film, map: ToneMap, exposure: f32) -> Vec<u8> {
     let bias = byte_bias(map);
     let byte = |x: f32| to_byte(tonemap_channel(x, map, exposure), bias);
-    let mut out = Vec::with_capacity(film.pixels.len() * 3);
-    for p in &film.pixels {
-        out.extend_from_slice(&p.to_array().map(byte));
+    let mut out = vec![0u8; film.pixels.len() * 3];
+    for (rgb, p) in out.chunks_exact_mut(3).zip(&film.pixels) {
+        rgb[0] = byte(p.x);
+        rgb[1] = byte(p.y);
+        rgb[2] = byte(p.z);
     }
     out
 }
