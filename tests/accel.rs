@@ -690,11 +690,10 @@ fn reachable_candidates_answer_every_shadow_ray_from_their_origin() {
 /// points are served from the buffer, with lists about as short as the tree's walk gives.
 #[test]
 fn light_buffer_candidates_answer_every_shadow_ray_of_the_beam() {
-    use raytracer::accel::light_buffer::scene_bounds;
     use raytracer::accel::{Beam, LightBuffer};
     let mut prims = Primitives::from(mixed_scene(80, 17));
     prims.push(plane(Vec3::new(0.0, 1.0, 0.0), -4.5));
-    let bounds = scene_bounds(&prims);
+    let bounds = prims.bounds();
     let list = Accel::List;
     let mut rng = Rng(0x11b);
     let (mut rays, mut blocked, mut points, mut served) = (0usize, 0usize, 0usize, 0usize);
@@ -703,8 +702,8 @@ fn light_buffer_candidates_answer_every_shadow_ray_of_the_beam() {
     for (name, accel) in accelerators(&prims) {
         for _ in 0..6 {
             let light = light_box(&mut rng);
-            let radius = 0.5 * (light.max - light.min).length();
-            let buffer = LightBuffer::new(light.center(), radius, &prims, &accel, &bounds);
+            let (centre, radius) = light.ball();
+            let buffer = LightBuffer::new(centre, radius, &prims, &accel, &bounds);
             for k in 0..150 {
                 let point = rng.vec(Vec3::splat(-4.0), Vec3::new(4.0, 2.0, 4.0));
                 // Origins offset as spawned ones are, and (every tenth point) farther than the

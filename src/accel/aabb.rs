@@ -34,6 +34,23 @@ impl Aabb {
         0.5 * (self.min + self.max)
     }
 
+    /// Corner `i` (0–7): bit 0 picks the maximum in x, bit 1 in y, bit 2 in z.
+    #[inline]
+    pub fn corner(&self, i: usize) -> Vec3 {
+        let pick = |bit: usize, lo: f32, hi: f32| if i & bit == 0 { lo } else { hi };
+        Vec3::new(
+            pick(1, self.min.x, self.max.x),
+            pick(2, self.min.y, self.max.y),
+            pick(4, self.min.z, self.max.z),
+        )
+    }
+
+    /// The ball around the box: its centre, and half its diagonal.
+    #[inline]
+    pub fn ball(&self) -> (Vec3, f32) {
+        (self.center(), 0.5 * (self.max - self.min).length())
+    }
+
     pub fn extent(&self) -> Vec3 {
         (self.max - self.min).max(Vec3::ZERO)
     }

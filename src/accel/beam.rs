@@ -58,24 +58,7 @@ impl Beam {
         let mut min_cos = 1.0f32;
         let mut length = 0.0f32;
         for i in 0..8 {
-            let corner = Vec3::new(
-                if i & 1 == 0 {
-                    target.min.x
-                } else {
-                    target.max.x
-                },
-                if i & 2 == 0 {
-                    target.min.y
-                } else {
-                    target.max.y
-                },
-                if i & 4 == 0 {
-                    target.min.z
-                } else {
-                    target.max.z
-                },
-            );
-            let w = corner - apex;
+            let w = target.corner(i) - apex;
             let d = w.length();
             if d == 0.0 {
                 return None;
@@ -163,7 +146,8 @@ impl Beam {
     /// Whether some ray of the beam may meet `b`, through the box's bounding ball.
     #[inline]
     pub fn may_hit_box(&self, b: &Aabb) -> bool {
-        self.may_hit_ball(b.center(), 0.5 * (b.max - b.min).length())
+        let (center, radius) = b.ball();
+        self.may_hit_ball(center, radius)
     }
 
     /// [`Beam::may_hit_box`] of four boxes (per axis, one lane per box), lane by lane the same

@@ -67,7 +67,7 @@ pub struct LightBuffer {
 impl LightBuffer {
     /// The buffer of a light whose every sample point lies within `radius` of `centre`, over the
     /// primitives `prims`, gathered through `accel`; `bounds` holds every bounded primitive
-    /// ([`scene_bounds`]).
+    /// ([`Primitives::bounds`]).
     pub fn new(
         centre: Vec3,
         radius: f32,
@@ -78,7 +78,7 @@ impl LightBuffer {
         // Every cone reaches past every bounded primitive: each cell's square is set at the
         // distance of the bounds' farthest corner, and a cone is as long as its farthest corner.
         let reach = (0..8)
-            .map(|i| corner(bounds, i).distance(centre))
+            .map(|i| bounds.corner(i).distance(centre))
             .fold(0.0f32, f32::max);
         let max_offset = OFFSET_FRACTION * (centre.abs().max_element() + reach);
         let mut balls = Vec::new();
@@ -128,9 +128,10 @@ impl LightBuffer {
     }
 
     /// Every primitive a shadow ray of the light may meet when it leaves from within `offset` of
-    /// `point`, in list order; `None` where the tree must answer (as for
+    /// `point`, in list order (for the tests); `None` where the tree must answer (as for
     /// [`LightBuffer::beam_candidates`]).
-    pub fn primitives(&self, point: Vec3, offset: f32) -> Option<Vec<u32>> {
+    #[cfg(test)]
+    fn primitives(&self, point: Vec3, offset: f32) -> Option<Vec<u32>> {
         let (blocks, count) = self.list(point, offset)?;
         Some(blocks.iter().flat_map(|b| b.numbers).take(count).collect())
     }
@@ -162,14 +163,6 @@ impl LightBuffer {
         }
         Some(true)
     }
-
-    /// Cells that keep a list, and the bytes the buffer holds.
-    pub fn listed(&self) -> (usize, usize) {
-        let kept = self.cells.iter().filter(|c| c.1 != FULL).count();
-        let bytes = self.cells.capacity() * std::mem::size_of::<(u32, u32)>()
-            + self.balls.capacity() * std::mem::size_of::<Balls4>();
-        (kept, bytes)
-    }
 }
 
 /// The block of the primitives `four` (one to four), each with the ball [`ball_of`] gives it
@@ -186,27 +179,6 @@ fn block(prims: &Primitives, four: &[u32]) -> Balls4 {
         radius: Vec4::from_array(lanes.map(|(_, (_, r))| r)),
         numbers: lanes.map(|(p, _)| p),
     }
-}
-
-/// The box of every bounded primitive.
-pub fn scene_bounds(prims: &Primitives) -> Aabb {
-    let mut bounds = Aabb::EMPTY;
-    prims.for_each_shape(|s| {
-        if s.is_bounded() {
-            bounds = bounds.union(s.bounds());
-        }
-    });
-    bounds
-}
-
-/// Corner `i` of `b` (bit 0: x, bit 1: y, bit 2: z; set for the maximum).
-fn corner(b: &Aabb, i: usize) -> Vec3 {
-    let pick = |bit: usize, lo: f32, hi: f32| if i & bit == 0 { lo } else { hi };
-    Vec3::new(
-        pick(1, b.min.x, b.max.x),
-        pick(2, b.min.y, b.max.y),
-        pick(4, b.min.z, b.max.z),
-    )
 }
 
 /// The face (0–5: +x, −x, +y, −y, +z, −z) of direction `d`, and its other two coordinates
@@ -320,7 +292,7 @@ mod tests {
             .collect();
         let prims = Primitives::from_records(records, Vec::new());
         let accel = Accel::build(&prims, AccelKind::Sah4, 4);
-        let buffer = LightBuffer::new(Vec3::ZERO, 0.1, &prims, &accel, &scene_bounds(&prims));
+        let buffer = LightBuffer::new(Vec3::ZERO, 0.1, &prims, &accel, &prims.bounds());
         assert_eq!(buffer.primitives(Vec3::new(0.0, 0.0, 10.0), 0.0), None);
         // Away from them, an empty list.
         let behind = Vec3::new(0.0, 0.0, -10.0);

@@ -320,9 +320,6 @@ pub(crate) fn ball_of(shape: &Shape) -> Option<(Vec3, f32)> {
     match shape {
         Shape::Sphere(s) => Some((s.center, s.radius.abs())),
         Shape::Plane(_) => None,
-        Shape::Triangle(_) | Shape::Cylinder(_) => {
-            let b = shape.bounds();
-            Some((b.center(), 0.5 * (b.max - b.min).length()))
-        }
+        Shape::Triangle(_) | Shape::Cylinder(_) => Some(shape.bounds().ball()),
     }
 }

@@ -16,6 +16,7 @@ use std::borrow::Cow;
 use std::ops::Range;
 
 use super::{Mesh, Primitive, Shape, Triangle};
+use crate::accel::aabb::Aabb;
 
 /// Meshes of at most this many faces keep one [`Primitive`] record per triangle; larger ones are
 /// stored as a run over their faces. At this size the records of one mesh are 3.4 MB, beside a
@@ -261,6 +262,17 @@ impl Primitives {
                 }
             }
         }
+    }
+
+    /// The box of every bounded shape ([`Aabb::EMPTY`] where there is none).
+    pub fn bounds(&self) -> Aabb {
+        let mut bounds = Aabb::EMPTY;
+        self.for_each_shape(|s| {
+            if s.is_bounded() {
+                bounds = bounds.union(s.bounds());
+            }
+        });
+        bounds
     }
 
     /// The primitives stored as records, with their numbers, in order: every shape but the

@@ -62,12 +62,7 @@ fn point_intensity(light: &Light) -> Vec3 {
 
 impl Emitters {
     pub fn new(scene: &Scene) -> Emitters {
-        let mut bounds = Aabb::EMPTY;
-        scene.primitives.for_each_shape(|s| {
-            if s.is_bounded() {
-                bounds = bounds.union(s.bounds());
-            }
-        });
+        let bounds = scene.primitives.bounds();
         let bounds = if bounds.min.x <= bounds.max.x {
             bounds
         } else {

@@ -23,6 +23,7 @@ use super::mesh_file::{read_mesh_with, MeshData, MeshLimits};
 use super::transform::{self, Affine};
 use super::{poly_sphere, rectangle};
 use super::{RenderMode, Scene, Variant};
+use crate::accel::aabb::Aabb;
 use crate::camera::{Camera, Handedness, Lens};
 use crate::files::input::{self, SizeLimit};
 use crate::files::{raise_hint, shown};
@@ -2151,15 +2152,8 @@ fn centred_rectangle(s: &Node) -> Result<Vec<Vec3>, SceneError> {
 
 /// The 12 triangles of an axis-aligned box.
 fn box_mesh(lo: Vec3, hi: Vec3) -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let p: Vec<Vec3> = (0..8)
-        .map(|i| {
-            Vec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            )
-        })
-        .collect();
+    let corners = Aabb::new(lo, hi);
+    let p: Vec<Vec3> = (0..8).map(|i| corners.corner(i)).collect();
     let quads = [
         [0, 2, 3, 1],
         [4, 5, 7, 6],

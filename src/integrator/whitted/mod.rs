@@ -60,7 +60,6 @@ use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::accel::aabb::Aabb;
-use crate::accel::light_buffer::scene_bounds;
 use crate::accel::{Accel, Beam, Inside, Interiors, LightBuffer, Reachable};
 use crate::light::{Light, LightSample};
 use crate::material::{highlight, Reflection};
@@ -135,10 +134,10 @@ pub fn light_buffers(scene: &Scene, accel: &Accel) -> Vec<Option<LightBuffer>> {
     if scene.lights.iter().all(|l| l.bounds().is_none()) {
         return Vec::new();
     }
-    let bounds = scene_bounds(&scene.primitives);
+    let bounds = scene.primitives.bounds();
     let buffer = |b: Aabb| {
-        let radius = 0.5 * (b.max - b.min).length();
-        LightBuffer::new(b.center(), radius, &scene.primitives, accel, &bounds)
+        let (centre, radius) = b.ball();
+        LightBuffer::new(centre, radius, &scene.primitives, accel, &bounds)
     };
     scene
         .lights
