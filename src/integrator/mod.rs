@@ -119,9 +119,15 @@ impl<'a> Integrator<'a> {
     ) -> Tracer<'a> {
         match &self.emitters {
             None => {
-                let mut w =
-                    Whitted::new(self.scene, self.accel, &self.interiors, max_depth, options)
-                        .with_light_buffers(&self.light_buffers);
+                let mut w = Whitted::new(
+                    self.scene,
+                    self.accel,
+                    &self.interiors,
+                    max_depth,
+                    options,
+                    method,
+                )
+                .with_light_buffers(&self.light_buffers);
                 w.cancel = cancel;
                 Tracer::Whitted(w)
             }

@@ -285,6 +285,9 @@ pub struct Whitted<'a> {
     /// Cap on recursion on top of the scene's `nbounces`.
     pub max_depth: u32,
     options: TraceOptions,
+    /// How the pixel's camera samples are placed: an area light's jittered cells spread their
+    /// points over the camera samples in the same way ([`SampleKey::light_set`]).
+    pixel_method: Method,
     pub counts: RayCounts,
     /// When set (from any thread), tracing stops at the next shading point or batch of shadow
     /// rays and the radiance returned is meaningless; the caller must throw the sample away.
@@ -321,6 +324,7 @@ impl<'a> Whitted<'a> {
         interiors: &'a Interiors,
         max_depth: u32,
         options: TraceOptions,
+        pixel_method: Method,
     ) -> Whitted<'a> {
         let draws = scene.materials.iter().any(|m| m.has_rough_mirror())
             || scene.lights.iter().any(|l| options.light_plan(l).0 > 1);
@@ -333,6 +337,7 @@ impl<'a> Whitted<'a> {
             interiors,
             max_depth,
             options,
+            pixel_method,
             counts: RayCounts::default(),
             cancel: None,
             budget: MAX_SECONDARY_RAYS_PER_SAMPLE,
@@ -590,7 +595,9 @@ impl<'a> Whitted<'a> {
         let scene = self.scene;
         let spawn = shading.spawn;
         let share = 1.0 / count as f32;
-        let points = key.stream(li as u64).point_set(method, 0, count);
+        let points = key
+            .stream(li as u64)
+            .light_set(method, self.pixel_method, 0, count);
         let quad = Quad::of(light);
         if let Some(quad) = &quad {
             if quad.wholly_behind(shading.point, shading.n) {
@@ -1001,7 +1008,7 @@ mod tests {
             cutoff,
             ..Default::default()
         };
-        let mut w = Whitted::new(&scene, &accel, &interiors, 8, options);
+        let mut w = Whitted::new(&scene, &accel, &interiors, 8, options, Method::Jittered);
         w.lanes = lanes;
         if !light_cut {
             w.light_cut = 0.0;

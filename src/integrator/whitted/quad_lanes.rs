@@ -350,7 +350,7 @@ mod tests {
     use crate::accel::{Accel, AccelKind};
     use crate::integrator::TraceOptions;
     use crate::math::Vec2;
-    use crate::sampling::SampleKey;
+    use crate::sampling::{Method, SampleKey};
     use crate::scene::{load_str, LoadOptions};
 
     /// A quad light of `samples` over a floor, with occluders of every kind a beam may hold:
@@ -452,11 +452,10 @@ mod tests {
                 has_highlight: true,
                 exponent: [200.0, 30.0, 1000.0][k as usize % 3],
             };
-            let points = SampleKey::new(k, 0, 0, 1, 7).stream(0).point_set(
-                crate::sampling::Method::Jittered,
-                0,
-                count,
-            );
+            let points =
+                SampleKey::new(k, 0, 0, 1, 7)
+                    .stream(0)
+                    .point_set(Method::Jittered, 0, count);
             let check = quad.highlight_may_show(&shading, &points, count, share);
             // The one-sample loop's terms, sample by sample.
             let any = (0..count).any(|i| {
@@ -553,8 +552,8 @@ mod tests {
             cutoff,
             ..Default::default()
         };
-        let mut lanes = Whitted::new(&scene, &accel, &interiors, 8, options);
-        let mut one = Whitted::new(&scene, &accel, &interiors, 8, options);
+        let mut lanes = Whitted::new(&scene, &accel, &interiors, 8, options, Method::Jittered);
+        let mut one = Whitted::new(&scene, &accel, &interiors, 8, options, Method::Jittered);
         one.lanes = false;
         super::super::tests::for_each_pixel_centre(&scene, |x, y, key, ray| {
             let a = lanes.trace_camera(ray, key);
