@@ -262,7 +262,7 @@ impl SampleKey {
     /// - `random`: independent points, as [`SampleKey::point_set`];
     /// - `jittered` with a square count `k²`: one point in each cell of a `k×k` grid over the
     ///   light, as the light asks of each camera sample; in each cell the pixel's `spp` camera
-    ///   samples place their points with a pattern of `across`, the pixel sampler (jittered: one
+    ///   samples place their points with a pattern of `camera.method`, the pixel sampler (jittered: one
     ///   point in each part of the cell cut into the squarest grid of `spp` parts; sobol:
     ///   Owen-scrambled Sobol points, whose every power-of-two prefix is stratified; random
     ///   leaves the cells' points independent), each cell's pattern turned by an offset of its
@@ -278,7 +278,7 @@ impl SampleKey {
     pub fn light_set(
         &self,
         method: Method,
-        across: Method,
+        camera: &CameraSamples,
         dimension: u64,
         count: u32,
     ) -> PointSet {
@@ -289,9 +289,14 @@ impl SampleKey {
         match method {
             Method::Random => {}
             Method::Jittered => {
-                if set.side > 0 && across != Method::Random {
+                if set.side > 0 && camera.method != Method::Random {
                     let key = self.pixel_hash(&[dimension, 0x9a7b_ce11]);
-                    set.across = Some(Across::new(across, key, self.sample, self.spp));
+                    let columns = if camera.spp == self.spp {
+                        camera.columns
+                    } else {
+                        grid_columns(self.spp)
+                    };
+                    set.across = Some(Across::new(camera.method, key, self, columns));
                 }
             }
             Method::Sobol => {
@@ -346,12 +351,14 @@ enum Pattern {
 }
 
 impl Across {
-    fn new(method: Method, key: u64, sample: u32, spp: u32) -> Across {
+    /// The pattern of `key`'s camera sample, its pixel's camera samples placed with `method`,
+    /// and a grid of parts `columns` wide when they are jittered.
+    fn new(method: Method, key: u64, sample: &SampleKey, columns: u32) -> Across {
+        let (sample, spp) = (sample.sample, sample.spp);
         let pattern = match method {
             Method::Sobol => Pattern::Sobol(sobol2(sample, (key >> 32) as u32)),
             Method::Random | Method::Jittered => {
                 let part = permute(sample, spp, key as u32);
-                let columns = grid_columns(spp);
                 Pattern::Parts {
                     part: (part % columns, part / columns),
                     grid: (columns, spp / columns),
@@ -396,6 +403,31 @@ impl Across {
         // Rounding may carry the last part's point up to 1: keep it inside.
         (Vec2::new(fine_x, fine_y) / (per_cell * side as f32))
             .min(Vec2::splat(1.0 - f32::EPSILON / 2.0))
+    }
+}
+
+/// How a render places each pixel's camera samples, as [`SampleKey::light_set`] needs it: the
+/// pixel sampler, and for `spp` samples the grid of parts a light's cell is cut into (found once,
+/// since the search for it takes up to `√spp` steps).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CameraSamples {
+    pub method: Method,
+    spp: u32,
+    columns: u32,
+}
+
+impl CameraSamples {
+    pub fn new(method: Method, spp: u32) -> CameraSamples {
+        CameraSamples {
+            method,
+            spp,
+            columns: grid_columns(spp),
+        }
+    }
+
+    /// The samples per pixel this was made for.
+    pub fn spp(&self) -> u32 {
+        self.spp
     }
 }
 
@@ -777,9 +809,12 @@ mod tests {
     ) -> Vec<Vec<Vec2>> {
         (0..spp)
             .map(|s| {
-                let set = SampleKey::new(x, y, s, spp, seed)
-                    .stream(2)
-                    .light_set(method, across, 0, count);
+                let set = SampleKey::new(x, y, s, spp, seed).stream(2).light_set(
+                    method,
+                    &CameraSamples::new(across, spp),
+                    0,
+                    count,
+                );
                 (0..count).map(|i| set.point(i)).collect()
             })
             .collect()
@@ -806,7 +841,7 @@ mod tests {
             for across in [Method::Random, Method::Jittered, Method::Sobol] {
                 for count in [1, 2, 7, 16, 64] {
                     let (ours, own) = (
-                        key.light_set(method, across, 4, count),
+                        key.light_set(method, &CameraSamples::new(across, 1), 4, count),
                         key.point_set(method, 4, count),
                     );
                     for i in 0..count {

@@ -65,7 +65,7 @@ use crate::light::{Light, LightSample};
 use crate::material::{highlight, Reflection};
 use crate::math::{fresnel_dielectric, local_to_world, reflect, refract, Vec2, Vec3};
 use crate::ray::{Ray, Side, SpawnPoints};
-use crate::sampling::{blinn_phong_half_vector, Method, SampleKey};
+use crate::sampling::{blinn_phong_half_vector, CameraSamples, Method, SampleKey};
 use crate::scene::{RenderMode, Scene};
 
 use super::{finite_radiance, RayCounts, TraceOptions, LIGHT_CLEARANCE};
@@ -286,8 +286,9 @@ pub struct Whitted<'a> {
     pub max_depth: u32,
     options: TraceOptions,
     /// How the pixel's camera samples are placed: an area light's jittered cells spread their
-    /// points over the camera samples in the same way ([`SampleKey::light_set`]).
-    pixel_method: Method,
+    /// points over the camera samples in the same way ([`SampleKey::light_set`]); remade when a
+    /// camera sample's count of samples per pixel differs.
+    camera: CameraSamples,
     pub counts: RayCounts,
     /// When set (from any thread), tracing stops at the next shading point or batch of shadow
     /// rays and the radiance returned is meaningless; the caller must throw the sample away.
@@ -337,7 +338,7 @@ impl<'a> Whitted<'a> {
             interiors,
             max_depth,
             options,
-            pixel_method,
+            camera: CameraSamples::new(pixel_method, 1),
             counts: RayCounts::default(),
             cancel: None,
             budget: MAX_SECONDARY_RAYS_PER_SAMPLE,
@@ -595,9 +596,12 @@ impl<'a> Whitted<'a> {
         let scene = self.scene;
         let spawn = shading.spawn;
         let share = 1.0 / count as f32;
+        if self.camera.spp() != key.spp {
+            self.camera = CameraSamples::new(self.camera.method, key.spp);
+        }
         let points = key
             .stream(li as u64)
-            .light_set(method, self.pixel_method, 0, count);
+            .light_set(method, &self.camera, 0, count);
         let quad = Quad::of(light);
         if let Some(quad) = &quad {
             if quad.wholly_behind(shading.point, shading.n) {
