@@ -262,11 +262,11 @@ impl SampleKey {
     /// - `random`: independent points, as [`SampleKey::point_set`];
     /// - `jittered` with a square count `k²`: one point in each cell of a `k×k` grid over the
     ///   light, as the light asks of each camera sample; in each cell the pixel's `spp` camera
-    ///   samples place their points with a pattern of `camera.method`, the pixel sampler (jittered: one
-    ///   point in each part of the cell cut into the squarest grid of `spp` parts; sobol:
-    ///   Owen-scrambled Sobol points, whose every power-of-two prefix is stratified; random
-    ///   leaves the cells' points independent), each cell's pattern turned by an offset of its
-    ///   own;
+    ///   samples place their points with a pattern of `camera.method`, the pixel sampler
+    ///   (jittered: one point in each part of the cell cut into the squarest grid of `spp` parts;
+    ///   sobol: Owen-scrambled Sobol points, whose every power-of-two prefix is stratified;
+    ///   random leaves the cells' points independent), each cell's pattern turned by an offset
+    ///   of its own;
     /// - `jittered` with another count: the N-rooks set of this camera sample alone;
     /// - `sobol`: points `s·count .. s·count + count` of the pixel's Owen-scrambled Sobol set
     ///   (camera sample `s`), so every camera sample's points and every power-of-two prefix of
@@ -351,10 +351,10 @@ enum Pattern {
 }
 
 impl Across {
-    /// The pattern of `key`'s camera sample, its pixel's camera samples placed with `method`,
-    /// and a grid of parts `columns` wide when they are jittered.
-    fn new(method: Method, key: u64, sample: &SampleKey, columns: u32) -> Across {
-        let (sample, spp) = (sample.sample, sample.spp);
+    /// The pattern of `camera_sample`, its pixel's camera samples placed with `method`, under
+    /// the set's pixel key `key`, with a grid of parts `columns` wide when they are jittered.
+    fn new(method: Method, key: u64, camera_sample: &SampleKey, columns: u32) -> Across {
+        let (sample, spp) = (camera_sample.sample, camera_sample.spp);
         let pattern = match method {
             Method::Sobol => Pattern::Sobol(sobol2(sample, (key >> 32) as u32)),
             Method::Random | Method::Jittered => {

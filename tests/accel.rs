@@ -540,6 +540,32 @@ fn shadow_ray(origin: Vec3, target: Vec3) -> (Ray, f32) {
     (Ray::new(origin, to / dist), dist * (1.0 - 1e-4))
 }
 
+/// `count` shadow rays from origins within `offset` of `point` to points of `light`, each
+/// answered by `candidates` as testing every primitive answers it; how many were blocked.
+fn assert_shadow_rays_answered(
+    rng: &mut Rng,
+    prims: &Primitives,
+    candidates: &Reachable,
+    (point, offset): (Vec3, f32),
+    light: &raytracer::accel::aabb::Aabb,
+    count: usize,
+    name: &str,
+) -> usize {
+    let mut blocked = 0;
+    for _ in 0..count {
+        let origin = point + rng.dir() * offset * rng.next();
+        let (ray, t_max) = shadow_ray(origin, rng.vec(light.min, light.max));
+        let want = Accel::List.any(prims, &ray, t_max, |_| true);
+        assert_eq!(
+            candidates.any(&ray, t_max, |_| true),
+            want,
+            "{name}: {ray:?} to {t_max}"
+        );
+        blocked += want as usize;
+    }
+    blocked
+}
+
 /// Shadow rays from one point to the points of a light box, tested against only the candidates
 /// of their beam, give the answer of testing every primitive, in every accelerator; and the
 /// beam does set primitives aside.
@@ -550,7 +576,6 @@ fn beam_candidates_answer_every_shadow_ray_of_the_beam() {
     let mut prims = Primitives::from(mixed_scene(300, 11));
     prims.push(plane(Vec3::new(0.0, 1.0, 0.0), -4.5));
     let accels = accelerators(&prims);
-    let list = Accel::List;
     let mut rng = Rng(0xbea);
     let (mut rays, mut blocked, mut kept, mut beams) = (0usize, 0usize, 0usize, 0usize);
     let mut candidates = Vec::new();
@@ -570,15 +595,16 @@ fn beam_candidates_answer_every_shadow_ray_of_the_beam() {
             assert!(accel.beam_candidates(&prims, &beam, usize::MAX, &mut candidates));
             kept += candidates.len();
             let all = Reachable::all(&prims, &candidates);
-            for _ in 0..40 {
-                let origin = apex + rng.dir() * offset * rng.next();
-                let (ray, t_max) = shadow_ray(origin, rng.vec(light.min, light.max));
-                let want = list.any(&prims, &ray, t_max, |_| true);
-                let got = all.any(&ray, t_max, |_| true);
-                assert_eq!(got, want, "{name}: {ray:?} to {t_max}");
-                rays += 1;
-                blocked += want as usize;
-            }
+            blocked += assert_shadow_rays_answered(
+                &mut rng,
+                &prims,
+                &all,
+                (apex, offset),
+                &light,
+                40,
+                name,
+            );
+            rays += 40;
         }
     }
     assert!(beams > 50, "{beams}");
@@ -694,7 +720,6 @@ fn light_buffer_candidates_answer_every_shadow_ray_of_the_beam() {
     let mut prims = Primitives::from(mixed_scene(80, 17));
     prims.push(plane(Vec3::new(0.0, 1.0, 0.0), -4.5));
     let bounds = prims.bounds();
-    let list = Accel::List;
     let mut rng = Rng(0x11b);
     let (mut rays, mut blocked, mut points, mut served) = (0usize, 0usize, 0usize, 0usize);
     let (mut from_buffer, mut from_tree) = (Vec::new(), Vec::new());
@@ -730,18 +755,16 @@ fn light_buffer_candidates_answer_every_shadow_ray_of_the_beam() {
                 buffer_len += from_buffer.len();
                 tree_len += from_tree.len();
                 let candidates = Reachable::all(&prims, &from_buffer);
-                for _ in 0..20 {
-                    let origin = point + rng.dir() * offset * rng.next();
-                    let (ray, t_max) = shadow_ray(origin, rng.vec(light.min, light.max));
-                    let want = list.any(&prims, &ray, t_max, |_| true);
-                    assert_eq!(
-                        candidates.any(&ray, t_max, |_| true),
-                        want,
-                        "{name}: {ray:?}"
-                    );
-                    rays += 1;
-                    blocked += want as usize;
-                }
+                blocked += assert_shadow_rays_answered(
+                    &mut rng,
+                    &prims,
+                    &candidates,
+                    (point, offset),
+                    &light,
+                    20,
+                    &name,
+                );
+                rays += 20;
             }
         }
     }
