@@ -237,7 +237,10 @@ fn an_adaptive_study_compares_at_equal_error() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next(),
-        Some("render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,uniform_seconds,ratio")
+        Some(
+            "render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,uniform_seconds,\
+             ratio,uniform_samples,samples_ratio"
+        )
     );
     let rows: Vec<Vec<String>> = lines
         .map(|l| l.split(',').map(str::to_string).collect())
@@ -256,15 +259,25 @@ fn an_adaptive_study_compares_at_equal_error() {
     assert_eq!(last[0], "best_allocation", "{last:?}");
     let bound: f64 = last[9].parse().unwrap();
     assert!(bound > 0.0 && bound < 0.6, "{last:?}");
+    assert_eq!(last[11], last[9], "{last:?}");
     assert!(String::from_utf8_lossy(&out.stdout).contains("best allocation: "));
     let mean = |r: &Vec<String>| r[3].parse::<f64>().unwrap();
     for r in &adaptive {
-        assert_eq!(r.len(), 10, "{r:?}");
+        assert_eq!(r.len(), 12, "{r:?}");
         assert!((16.0..=64.0).contains(&mean(r)), "{r:?}");
         let mse: f64 = r[6].parse().unwrap();
         assert!(mse.is_finite() && mse > 0.0, "{r:?}");
         if !r[9].is_empty() {
             assert!(r[9].parse::<f64>().unwrap() > 0.0, "{r:?}");
+        }
+        // The samples ratio: the adaptive mean over the uniform samples at the same error, which
+        // lie inside the uniform runs' range whenever a time ratio was given.
+        assert_eq!(r[10].is_empty(), r[9].is_empty(), "{r:?}");
+        if !r[10].is_empty() {
+            let uniform: f64 = r[10].parse().unwrap();
+            let ratio: f64 = r[11].parse().unwrap();
+            assert!((1.0..=64.0).contains(&uniform), "{r:?}");
+            assert!((ratio - mean(r) / uniform).abs() < 1e-5, "{r:?}");
         }
     }
     assert!(mean(adaptive[0]) <= mean(adaptive[1]), "{adaptive:?}");

@@ -458,12 +458,14 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
     )?;
     outln!("MSE over the {what}; uniform and adaptive both with Sobol pixel samples");
     outln!(
-        "{:<18} {:>9} {:>10} {:>11} {:>14} {:>7}",
+        "{:<18} {:>9} {:>10} {:>11} {:>14} {:>7} {:>11} {:>7}",
         "render",
         "spp",
         "seconds",
         "MSE",
         "uniform s",
+        "ratio",
+        "uniform spp",
         "ratio"
     );
     for r in &result.uniform {
@@ -477,14 +479,16 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
     }
     for r in &result.adaptive {
         outln!(
-            "{:<18} {:>9.1} {:>10.4} {:>11.3e} {:>14} {:>7}",
+            "{:<18} {:>9.1} {:>10.4} {:>11.3e} {:>14} {:>7} {:>11} {:>7}",
             format!("adaptive T={}", r.threshold),
             r.mean_samples,
             r.seconds,
             r.mse_region,
             r.uniform_seconds
                 .map_or("out of range".into(), |u| format!("{u:.4}")),
-            r.ratio().map_or("-".into(), |q| format!("{q:.2}×"))
+            r.ratio().map_or("-".into(), |q| format!("{q:.2}×")),
+            r.uniform_samples.map_or("-".into(), |u| format!("{u:.1}")),
+            r.samples_ratio().map_or("-".into(), |q| format!("{q:.2}×"))
         );
     }
     if let Some(b) = result.bound {

@@ -10,7 +10,7 @@
 //! sample of the scene (area lights, the lens, a path's bounces) is the render's own.
 
 use super::{
-    bounds, draw_axes, draw_legend, encode_png, register_font, runs_of, time_to_reach, timed, Run,
+    bounds, cost_to_reach, draw_axes, draw_legend, encode_png, register_font, runs_of, timed, Run,
     REFERENCE_SEED,
 };
 use crate::film::Film;
@@ -51,12 +51,22 @@ pub struct AdaptiveRun {
     pub flip: f64,
     /// The time uniform sampling needs for `mse_region`; `None` outside the uniform runs' range.
     pub uniform_seconds: Option<f64>,
+    /// The samples per pixel uniform sampling needs for `mse_region`, likewise.
+    pub uniform_samples: Option<f64>,
 }
 
 impl AdaptiveRun {
     /// Adaptive time over uniform time at the same error.
     pub fn ratio(&self) -> Option<f64> {
         self.uniform_seconds.map(|u| self.seconds / u)
+    }
+
+    /// Adaptive samples over uniform samples at the same error: the ratio without the clock, the
+    /// same on every machine and run, and in the units of [`allocation_bound`]. It leaves out
+    /// that the pixels adaptive sampling spends its samples on may cost more a sample than the
+    /// image's average, and the rounds' own cost.
+    pub fn samples_ratio(&self) -> Option<f64> {
+        self.uniform_samples.map(|u| self.mean_samples / u)
     }
 }
 
@@ -236,14 +246,16 @@ pub fn run_adaptive_study(
             mse: mse(reference, &r.film, full),
             mse_region,
             flip: mean_flip(reference, &r.film, full),
-            uniform_seconds: uniform_time_at(&uniform, mse_region),
+            uniform_seconds: uniform_at(&uniform, mse_region, |r| r.seconds),
+            uniform_samples: uniform_at(&uniform, mse_region, |r| f64::from(r.samples)),
         };
         progress(
             counts.len() + 1 + i + 1,
             total,
             format!(
-                "adaptive T = {threshold} ({mean_samples:.1} spp)  {seconds:.4} s  MSE {mse_region:.3e}  ratio {}",
-                run.ratio().map_or("-".into(), |x| format!("{x:.2}×"))
+                "adaptive T = {threshold} ({mean_samples:.1} spp)  {seconds:.4} s  MSE {mse_region:.3e}  ratio {}, samples {}",
+                run.ratio().map_or("-".into(), |x| format!("{x:.2}×")),
+                run.samples_ratio().map_or("-".into(), |x| format!("{x:.2}×"))
             ),
         );
         adaptive.push(run);
@@ -256,26 +268,29 @@ pub fn run_adaptive_study(
     })
 }
 
-/// The time uniform sampling needs for `target`: [`time_to_reach`] within the uniform runs'
-/// range of errors, `None` outside it (no extrapolation, not even to the first run's time).
-fn uniform_time_at(uniform: &[Run], target: f64) -> Option<f64> {
+/// What uniform sampling spends (`cost`: its time, its samples) to reach `target`:
+/// [`cost_to_reach`] within the uniform runs' range of errors, `None` outside it (no
+/// extrapolation, not even to the first run's cost).
+fn uniform_at(uniform: &[Run], target: f64, cost: impl Fn(&Run) -> f64) -> Option<f64> {
     let worst = runs_of(uniform, Method::Sobol).first()?.mse_region;
     if target > worst {
         return None;
     }
-    time_to_reach(uniform, Method::Sobol, target)
+    cost_to_reach(uniform, Method::Sobol, target, cost)
 }
 
 /// The study as CSV: `render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,
-/// uniform_seconds,ratio`, uniform rows first (their threshold, uniform time and ratio empty),
-/// then the adaptive rows, then a `best_allocation` row whose ratio is [`allocation_bound`].
+/// uniform_seconds,ratio,uniform_samples,samples_ratio`, uniform rows first (their threshold and
+/// last four columns empty), then the adaptive rows, then a `best_allocation` row whose
+/// `samples_ratio` (and, as before, `ratio`) is [`allocation_bound`].
 pub fn csv_text(study: &AdaptiveStudy) -> String {
     let mut s = String::from(
-        "render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,uniform_seconds,ratio\n",
+        "render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,uniform_seconds,ratio,\
+         uniform_samples,samples_ratio\n",
     );
     for r in &study.uniform {
         s.push_str(&format!(
-            "uniform,,{},{},{:.6},{:.6e},{:.6e},{:.6},,\n",
+            "uniform,,{},{},{:.6},{:.6e},{:.6e},{:.6},,,,\n",
             r.samples, r.samples, r.seconds, r.mse, r.mse_region, r.flip
         ));
     }
@@ -283,7 +298,7 @@ pub fn csv_text(study: &AdaptiveStudy) -> String {
     for r in &study.adaptive {
         let opt = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x:.6}"));
         s.push_str(&format!(
-            "adaptive,{},{cap},{:.3},{:.6},{:.6e},{:.6e},{:.6},{},{}\n",
+            "adaptive,{},{cap},{:.3},{:.6},{:.6e},{:.6e},{:.6},{},{},{},{}\n",
             r.threshold,
             r.mean_samples,
             r.seconds,
@@ -291,11 +306,13 @@ pub fn csv_text(study: &AdaptiveStudy) -> String {
             r.mse_region,
             r.flip,
             opt(r.uniform_seconds),
-            opt(r.ratio())
+            opt(r.ratio()),
+            opt(r.uniform_samples),
+            opt(r.samples_ratio())
         ));
     }
     if let Some(b) = study.bound {
-        s.push_str(&format!("best_allocation,,,,,,,,,{b:.6}\n"));
+        s.push_str(&format!("best_allocation,,,,,,,,,{b:.6},,{b:.6}\n"));
     }
     s
 }
@@ -423,16 +440,19 @@ mod tests {
         assert_eq!(allocation_bound(&films(&|_| 0.1)[..1], full), None);
     }
 
-    /// The uniform time at an error is interpolated in log-log between the runs around it, and
-    /// is unknown past their range: a ratio is never extrapolated.
+    /// The uniform time and samples at an error are interpolated in log-log between the runs
+    /// around it, and are unknown past their range: a ratio is never extrapolated.
     #[test]
-    fn equal_error_time_interpolates_inside_the_uniform_range_only() {
-        // MSE ∝ 1/spp, time ∝ spp: the time for MSE e is 1/e.
-        let u = uniform(&[(1, 1.0, 1.0), (2, 2.0, 0.5), (4, 4.0, 0.25)]);
-        let t = uniform_time_at(&u, 0.4).unwrap();
-        assert!((t - 2.5).abs() < 1e-9, "{t}");
-        assert_eq!(uniform_time_at(&u, 2.0), None);
-        assert_eq!(uniform_time_at(&u, 0.1), None);
+    fn equal_error_cost_interpolates_inside_the_uniform_range_only() {
+        // MSE ∝ 1/spp, time = 0.5 s a sample: MSE e takes 1/e samples and 0.5/e seconds.
+        let u = uniform(&[(1, 0.5, 1.0), (2, 1.0, 0.5), (4, 2.0, 0.25)]);
+        let seconds = |r: &Run| r.seconds;
+        let t = uniform_at(&u, 0.4, seconds).unwrap();
+        assert!((t - 1.25).abs() < 1e-9, "{t}");
+        let n = uniform_at(&u, 0.4, |r| f64::from(r.samples)).unwrap();
+        assert!((n - 2.5).abs() < 1e-9, "{n}");
+        assert_eq!(uniform_at(&u, 2.0, seconds), None);
+        assert_eq!(uniform_at(&u, 0.1, seconds), None);
         let run = AdaptiveRun {
             threshold: 0.01,
             mean_samples: 1.5,
@@ -441,8 +461,10 @@ mod tests {
             mse_region: 0.4,
             flip: 0.0,
             uniform_seconds: Some(t),
+            uniform_samples: Some(n),
         };
-        assert!((run.ratio().unwrap() - 0.4).abs() < 1e-9);
+        assert!((run.ratio().unwrap() - 0.8).abs() < 1e-9);
+        assert!((run.samples_ratio().unwrap() - 0.6).abs() < 1e-9);
         let csv = csv_text(&AdaptiveStudy {
             uniform: u,
             adaptive: vec![run],
@@ -450,11 +472,20 @@ mod tests {
             variance_samples: 16,
         });
         assert_eq!(csv.lines().count(), 6);
-        assert!(csv
-            .lines()
-            .nth(4)
-            .unwrap()
-            .starts_with("adaptive,0.01,4,1.500,"));
-        assert_eq!(csv.lines().last(), Some("best_allocation,,,,,,,,,0.250000"));
+        let columns = csv.lines().next().unwrap().split(',').count();
+        assert!(
+            csv.lines().all(|l| l.split(',').count() == columns),
+            "{csv}"
+        );
+        let adaptive = csv.lines().nth(4).unwrap();
+        assert!(adaptive.starts_with("adaptive,0.01,4,1.500,"), "{adaptive}");
+        assert!(
+            adaptive.ends_with(",0.800000,2.500000,0.600000"),
+            "{adaptive}"
+        );
+        assert_eq!(
+            csv.lines().last(),
+            Some("best_allocation,,,,,,,,,0.250000,,0.250000")
+        );
     }
 }

@@ -279,18 +279,29 @@ fn interpolate_loglog(points: &[(f64, f64)], x: f64) -> Option<f64> {
 /// its MSE-against-time curve, interpolated in log-log. `None` if it never gets there; the first
 /// run's time if that is already at or below the target (an upper bound).
 pub fn time_to_reach(runs: &[Run], sampler: Method, target: f64) -> Option<f64> {
+    cost_to_reach(runs, sampler, target, |r| r.seconds)
+}
+
+/// What [`time_to_reach`] finds for the render time, for any cost of a run (its time, its
+/// samples).
+pub fn cost_to_reach(
+    runs: &[Run],
+    sampler: Method,
+    target: f64,
+    cost: impl Fn(&Run) -> f64,
+) -> Option<f64> {
     let v = runs_of(runs, sampler);
     let first = v.first()?;
     if first.mse_region <= target {
-        return Some(first.seconds);
+        return Some(cost(first));
     }
     v.windows(2).find_map(|w| {
         let (a, b) = (w[0], w[1]);
         if !(a.mse_region > target && b.mse_region <= target) {
             return None;
         }
-        let pts = [(a.mse_region, a.seconds), (b.mse_region, b.seconds)];
-        interpolate_loglog(&pts, target).or(Some(b.seconds))
+        let pts = [(a.mse_region, cost(a)), (b.mse_region, cost(b))];
+        interpolate_loglog(&pts, target).or(Some(cost(b)))
     })
 }
 
