@@ -3,26 +3,31 @@
 //!
 //! Round boundaries double: 4, 8, 16, … samples (fewer rounds for small `spp`), so a pixel that
 //! stops after round r holds exactly samples `0..n_r` of the full pattern. After every round from
-//! the `FIRST_DECISION`th sample on, the error of each pixel is estimated from two groups of its
-//! samples, after Dammertz et al. 2010 ("A hierarchical automatic stopping condition for Monte
-//! Carlo global illumination") and Cycles (Blender's `kernel/film/adaptive_sampling.h`): with `F`
-//! the mean of the `k` samples before the last round, `L` the mean of the last round's `n − k`,
-//! and `I` the mean of all `n`,
+//! the `FIRST_DECISION`th sample on, the error of each pixel is estimated from how far apart the
+//! means of four groups of its samples lie, after Dammertz et al. 2010 ("A hierarchical automatic
+//! stopping condition for Monte Carlo global illumination") and Cycles (Blender's
+//! `kernel/film/adaptive_sampling.h`), which compare two groups. The groups are the four
+//! consecutive quarters of the pixel's `n` samples (a round's two halves and the two halves of
+//! what came before it); with `m_j` the mean of group j (of `c_j` samples) and `I` the mean of all
+//! `n`, per channel
 //!
 //! ```text
-//! error = √(k(n − k))/n · (|L_r − F_r| + |L_g − F_g| + |L_b − F_b|) / (10⁻⁴ + √(I_r + I_g + I_b))
+//! s² = Σ_j c_j (m_j − I)² / 3                  (the variance of one sample)
+//! error = (s_r + s_g + s_b) / √n / (10⁻⁴ + √(I_r + I_g + I_b))
 //! ```
 //!
-//! (for `k = n/2`, half the difference of the two halves' means: the standard error of `I` when
-//! the samples are independent). Cycles splits odd-numbered from even-numbered samples instead;
-//! with Owen-scrambled Sobol points (the default under `--adaptive`) those lie in opposite halves
-//! of the pixel, so their difference measures the pixel's gradient, and an edge never looked
-//! converged. The first `n/2` points and the next `n/2` each cover the whole pixel, stratified.
+//! the standard error of `I` when the groups are independent, relative to the square root of the
+//! brightness, as the eye is. With two groups (`c_j = n/2`) this is half the difference of their
+//! means, Cycles' and Dammertz's estimate; four groups give it three degrees of freedom instead of
+//! one, so a noisy pixel looks converged by chance far less often. Cycles splits odd-numbered
+//! from even-numbered samples; with Owen-scrambled Sobol points (the default under `--adaptive`)
+//! those lie in opposite halves of the pixel, so their difference measures the pixel's gradient
+//! and an edge never looked converged. Each quarter here is an aligned block of Sobol points,
+//! stratified over the whole pixel.
 //!
-//! which is relative to the square root of the brightness, as the eye is. A pixel goes on while
-//! the largest error in its 3×3 neighbourhood is above the threshold, so a pixel whose few samples
-//! happen to agree inside a noisy penumbra does not stop alone. Decisions depend only on the
-//! samples, never on timing or threads: the same command gives the same bytes.
+//! A pixel goes on while the largest error in its 3×3 neighbourhood is above the threshold, so a
+//! pixel whose few samples happen to agree inside a noisy penumbra does not stop alone. Decisions
+//! depend only on the samples, never on timing or threads: the same command gives the same bytes.
 //!
 //! With a time limit ([`Adaptive::time_limit`]) rounds go on until the time is spent and the
 //! pixels keep the rounds they finished: the one mode whose bytes depend on the machine.
@@ -38,6 +43,7 @@ use rayon::prelude::*;
 
 use crate::film::{PixelRect, PixelSum};
 use crate::integrator::RayCounts;
+use crate::math::Vec3;
 
 use super::Work;
 
@@ -93,35 +99,69 @@ pub(super) fn traced_region(window: PixelRect, full: PixelRect, spp: u32) -> Pix
     }
 }
 
+/// The groups a pixel's samples are split into for its error estimate.
+const GROUPS: usize = 4;
+
 /// One pixel's samples so far.
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct PixelState {
     all: PixelSum,
-    /// The sums of the samples before the last round (`first_count` of them) and of the last
-    /// round's.
-    first: PixelSum,
-    last: PixelSum,
-    first_count: u32,
+    /// The sums of the four consecutive quarters of the pixel's samples, and how many each holds.
+    groups: [PixelSum; GROUPS],
+    group_counts: [u32; GROUPS],
     count: u32,
     active: bool,
 }
 
 impl PixelState {
+    /// Adds samples `start..end` of the pixel, `sample(s)` giving sample `s`, and regroups them:
+    /// the first round's samples make four groups, a later round's two halves become the last two
+    /// groups and the four groups before them merge pairwise into the first two.
+    fn add_round(&mut self, start: u32, end: u32, mut sample: impl FnMut(u32) -> Vec3) {
+        if start > 0 {
+            let [mut a, b, mut c, d] = self.groups;
+            a.merge(&b);
+            c.merge(&d);
+            let k = self.group_counts;
+            self.groups = [a, c, PixelSum::default(), PixelSum::default()];
+            self.group_counts = [k[0] + k[1], k[2] + k[3], 0, 0];
+        }
+        let mid = start + (end - start) / 2;
+        for s in start..end {
+            let c = sample(s);
+            let g = if start == 0 {
+                (s as usize * GROUPS) / end as usize
+            } else if s < mid {
+                2
+            } else {
+                3
+            };
+            self.all.add(c);
+            self.groups[g].add(c);
+            self.group_counts[g] += 1;
+        }
+        self.count = end;
+    }
+
     /// The estimated standard error of the pixel's mean, relative to the square root of its
-    /// brightness: from the difference between the samples of the last round and those before
-    /// it (see the module docs).
+    /// brightness: from the spread of its groups' means (see the module docs).
     fn error(&self) -> f32 {
-        let (n, k) = (self.count, self.first_count);
-        if k == 0 || k >= n {
+        let n = self.count;
+        let used = self.group_counts.iter().filter(|&&c| c > 0).count();
+        if used < 2 {
             return f32::INFINITY;
         }
         let i = self.all.mean(n);
-        let first = self.first.mean(k);
-        let rest = self.last.mean(n - k);
-        // Var(rest − first) = σ²·n/(k(n − k)); the mean of all n has σ²/n.
-        let scale = ((k as f32) * ((n - k) as f32)).sqrt() / n as f32;
-        let e =
-            (rest - first).abs().element_sum() * scale / (1e-4 + i.element_sum().max(0.0).sqrt());
+        let mut squares = Vec3::ZERO;
+        for (sum, &c) in self.groups.iter().zip(&self.group_counts) {
+            if c > 0 {
+                let d = sum.mean(c) - i;
+                squares += d * d * c as f32;
+            }
+        }
+        let variance = squares / (used - 1) as f32;
+        let standard_error = (variance / n as f32).to_array().map(f32::sqrt);
+        let e = standard_error.iter().sum::<f32>() / (1e-4 + i.element_sum().max(0.0).sqrt());
         // NaN (a NaN sample) never converges, so it is not hidden by stopping early.
         if e.is_nan() {
             f32::INFINITY
@@ -182,20 +222,15 @@ pub(super) fn trace(
                         break;
                     }
                     // A pixel's state changes only once its round is complete.
-                    let mut next = *p;
-                    next.first = p.all;
-                    next.first_count = p.count;
-                    next.last = PixelSum::default();
-                    let x = region.x0 + i as u32;
-                    for s in start..end {
-                        if tracer.cancelled() {
-                            return tracer.counts();
-                        }
-                        let c = work.sample(&mut tracer, x, y, s);
-                        next.all.add(c);
-                        next.last.add(c);
+                    if tracer.cancelled() {
+                        return tracer.counts();
                     }
-                    next.count = end;
+                    let mut next = *p;
+                    let x = region.x0 + i as u32;
+                    next.add_round(start, end, |s| work.sample(&mut tracer, x, y, s));
+                    if tracer.cancelled() {
+                        return tracer.counts();
+                    }
                     *p = next;
                 }
                 tracer.counts()
@@ -277,24 +312,34 @@ mod tests {
         assert_eq!(round_ends(100), vec![4, 8, 16, 32, 64, 100]);
     }
 
-    /// A pixel whose last round took the second half of `samples`.
+    /// A pixel that took `samples` in rounds doubling from 4, as a render does.
     fn state(samples: &[f32]) -> PixelState {
         let mut p = PixelState {
             active: true,
             ..PixelState::default()
         };
-        let k = samples.len() / 2;
-        for (s, &v) in samples.iter().enumerate() {
-            p.all.add(Vec3::splat(v));
-            if s < k {
-                p.first.add(Vec3::splat(v));
-            } else {
-                p.last.add(Vec3::splat(v));
-            }
+        let n = samples.len() as u32;
+        let mut start = 0;
+        for end in round_ends(n) {
+            p.add_round(start, end, |s| Vec3::splat(samples[s as usize]));
+            start = end;
         }
-        p.count = samples.len() as u32;
-        p.first_count = k as u32;
         p
+    }
+
+    #[test]
+    fn rounds_regroup_into_four_quarters() {
+        let samples: Vec<f32> = (0..16).map(|s| s as f32).collect();
+        let p = state(&samples);
+        assert_eq!(p.count, 16);
+        assert_eq!(p.group_counts, [4, 4, 4, 4]);
+        let means: Vec<f32> = (0..4).map(|j| p.groups[j].mean(4).x).collect();
+        assert_eq!(means, [1.5, 5.5, 9.5, 13.5]);
+        assert_eq!(p.all.mean(16).x, 7.5);
+        // A last round short of doubling (8 to 12): its halves are smaller than the groups
+        // before it.
+        let p = state(&samples[..12]);
+        assert_eq!(p.group_counts, [4, 4, 2, 2]);
     }
 
     #[test]
@@ -308,16 +353,63 @@ mod tests {
     }
 
     /// Owen-scrambled Sobol puts a pixel's odd-numbered samples in one half of it and the even
-    /// ones in the other, so on an edge they differ however many there are; each round's
-    /// samples, and those before, cover the whole pixel alike, so they agree.
+    /// ones in the other, so on an edge they differ however many there are; each quarter of the
+    /// samples covers the whole pixel alike, so the quarters agree.
     #[test]
     fn an_edge_sampled_evenly_on_both_sides_converges() {
         let edge = state(&[0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0]);
         assert_eq!(edge.error(), 0.0);
-        // The error of the mean of all n samples: half the difference of two halves' means.
-        let halves = state(&[0.4, 0.4, 0.6, 0.6]);
-        let want = 0.2 * 3.0 / 2.0 / (1e-4 + 1.5f32.sqrt());
-        assert!((halves.error() - want).abs() < 1e-6, "{}", halves.error());
+    }
+
+    /// Groups of one sample each give the textbook standard error s/√n; two groups of n/2 give
+    /// half the difference of their means (Dammertz et al., Cycles).
+    #[test]
+    fn error_is_the_standard_error_of_the_mean() {
+        let brightness = |mean: f32| 1e-4 + (3.0 * mean).sqrt();
+        let four = state(&[0.4, 0.4, 0.6, 0.6]);
+        let s = (4.0 * 0.01f32 / 3.0).sqrt();
+        let want = 3.0 * s / 2.0 / brightness(0.5);
+        assert!((four.error() - want).abs() < 1e-6, "{}", four.error());
+        let mut two = PixelState::default();
+        two.add_round(0, 2, |s| Vec3::splat([0.4, 0.6][s as usize]));
+        let want = 3.0 * 0.1 / brightness(0.5);
+        assert!((two.error() - want).abs() < 1e-6, "{}", two.error());
+    }
+
+    /// Four groups estimate a pixel's error with three degrees of freedom: over many pixels of
+    /// independent noise the estimate's spread is well under the one-degree estimate's 0.76 of
+    /// its mean (that of |N(0, 1)|), and its mean is c₄(4) = 0.921 of the true standard error.
+    #[test]
+    fn the_estimate_is_steady_across_pixels_alike() {
+        let mut rng = 0x2545_f491_4f6c_dd1du64;
+        let mut normal = move || {
+            // Sum of 12 uniforms minus 6: mean 0, variance 1.
+            (0..12)
+                .map(|_| {
+                    rng ^= rng << 13;
+                    rng ^= rng >> 7;
+                    rng ^= rng << 17;
+                    (rng >> 40) as f32 / (1u64 << 24) as f32
+                })
+                .sum::<f32>()
+                - 6.0
+        };
+        let (sigma, mean, n) = (0.1f32, 0.5f32, 16usize);
+        let errors: Vec<f32> = (0..4000)
+            .map(|_| {
+                let samples: Vec<f32> = (0..n).map(|_| mean + sigma * normal()).collect();
+                state(&samples).error()
+            })
+            .collect();
+        let m = errors.iter().sum::<f32>() / errors.len() as f32;
+        let sd = (errors.iter().map(|e| (e - m).powi(2)).sum::<f32>() / errors.len() as f32).sqrt();
+        let truth = 3.0 * sigma / (n as f32).sqrt() / (1e-4 + (3.0 * mean).sqrt());
+        assert!(
+            (m / truth - 0.921).abs() < 0.03,
+            "{} of the truth",
+            m / truth
+        );
+        assert!(sd / m < 0.5, "spread {} of the mean", sd / m);
     }
 
     #[test]
