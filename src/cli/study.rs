@@ -499,6 +499,13 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             result.variance_samples
         );
     }
+    if let Some((a, b)) = result.bound_at_rate {
+        outln!(
+            "best allocation at the uniform runs' convergence, MSE ∝ n^-{a:.2} from {} spp up: \
+             {b:.2}× uniform's samples",
+            study::adaptive::VARIANCE_SAMPLES
+        );
+    }
     Ok(())
 }
 

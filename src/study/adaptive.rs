@@ -10,8 +10,8 @@
 //! sample of the scene (area lights, the lens, a path's bounces) is the render's own.
 
 use super::{
-    bounds, cost_to_reach, draw_axes, draw_legend, encode_png, register_font, runs_of, timed, Run,
-    REFERENCE_SEED,
+    bounds, cost_to_reach, draw_axes, draw_legend, encode_png, loglog_slope, register_font,
+    runs_of, timed, Run, REFERENCE_SEED,
 };
 use crate::film::Film;
 use crate::integrator::Kind;
@@ -76,8 +76,13 @@ pub struct AdaptiveStudy {
     /// Uniform runs (sampler Sobol), in sample order.
     pub uniform: Vec<Run>,
     pub adaptive: Vec<AdaptiveRun>,
-    /// [`allocation_bound`] of the scene over the study's region: no adaptive run can do better.
+    /// [`allocation_bound`] of the scene over the study's region at one-over-n convergence: no
+    /// adaptive run can do better where each pixel's error falls as one over its samples.
     pub bound: Option<f64>,
+    /// The exponent `a` of the uniform runs' convergence, MSE ∝ n^−a, fitted from
+    /// [`VARIANCE_SAMPLES`] samples up, and [`allocation_bound`] at it: the bound where every
+    /// pixel converges as the image does.
+    pub bound_at_rate: Option<(f64, f64)>,
     /// Pixel samples in each of the [`VARIANCE_RENDERS`] renders the bound was measured from.
     pub variance_samples: u32,
 }
@@ -85,27 +90,36 @@ pub struct AdaptiveStudy {
 /// Renders, under seeds of their own, of `VARIANCE_SAMPLES` uniform Sobol pixel samples each:
 /// the spread of their pixels gives each pixel's variance for [`allocation_bound`].
 pub const VARIANCE_RENDERS: u64 = 8;
-const VARIANCE_SAMPLES: u32 = 16;
+pub const VARIANCE_SAMPLES: u32 = 16;
 /// The first of the variance renders' seeds (the runs use `--seed`, the reference its own).
 const VARIANCE_SEED: u64 = 0x0a11_0ca7_e000;
 
 /// The least share of uniform sampling's samples with which any allocation of samples to the
-/// pixels of `region` reaches uniform sampling's MSE there, each pixel's error variance falling
-/// as σᵢ²/nᵢ: minimising Σnᵢ under Σσᵢ²/nᵢ = Σσᵢ²/m gives nᵢ ∝ σᵢ and the share
-/// (Σσᵢ)² / (N·Σσᵢ²) (Cauchy–Schwarz: 1 when every pixel is as noisy as the others, small when
-/// the noise sits in few pixels). σᵢ² is the variance of pixel i over `films`, independent renders
-/// alike but for their seeds, summed over RGB. The mean of σᵢ estimated from k renders falls short
-/// of the true one by c₄(k) (Gurland & Tripathi 1971, for normal means), so the share is divided
-/// by c₄(k)²; fewer degrees of freedom than RGB's could give make that correction the cautious one.
-/// Past the model: a real adaptive render also pays for its floor of samples, its rounds and
-/// its estimate, and Sobol points converge faster than 1/n where a pixel is smooth. `None` for
-/// fewer than two films or a noiseless region.
-pub fn allocation_bound(films: &[Film], region: Region) -> Option<f64> {
+/// pixels of `region` reaches uniform sampling's MSE there, when each pixel's error variance falls
+/// as σᵢ²·(16/nᵢ)^a, σᵢ² its variance at 16 samples (a = 1: independent samples; stratified ones
+/// converge faster, a > 1).
+///
+/// Minimising Σnᵢ under a fixed Σσᵢ²·nᵢ^−a (a Lagrange multiplier) gives nᵢ ∝ σᵢ^(2p) with
+/// p = 1/(a + 1), and the share `(S^(a+1) / (N^a · Σσᵢ²))^(1/a)` with S = Σσᵢ^(2p) over the N
+/// pixels. For a = 1 that is (Σσᵢ)² / (N·Σσᵢ²) (nᵢ ∝ σᵢ; Cauchy–Schwarz): 1 when every pixel is
+/// as noisy as the others, small when the noise sits in few pixels. The faster pixels converge,
+/// the less moving samples between them buys, and the share tends to 1 as a grows.
+///
+/// σᵢ² is the variance of pixel i over `films`, independent renders alike but for their seeds,
+/// summed over RGB. Its power σ̂^(2p) estimated from k renders is low on average by the factor
+/// E[(χ²_ν/ν)^p], ν = k − 1 (for p = ½ that is c₄(k) of Gurland & Tripathi 1971, 0.965 at k = 8),
+/// which the share corrects for; fewer degrees of freedom than RGB's could give make that
+/// correction the cautious one. Past the model: a real adaptive render also pays for its floor of
+/// samples, its rounds and its estimate, and pixels converge at rates of their own (an edge
+/// slower than a smooth gradient). `None` for fewer than two films, a noiseless region or
+/// `a` ≤ 0.
+pub fn allocation_bound(films: &[Film], region: Region, a: f64) -> Option<f64> {
     let k = films.len();
-    if k < 2 {
+    if k < 2 || a.is_nan() || a <= 0.0 {
         return None;
     }
-    let (mut sum_sigma, mut sum_var) = (0.0f64, 0.0f64);
+    let p = 1.0 / (a + 1.0);
+    let (mut sum_power, mut sum_var) = (0.0f64, 0.0f64);
     for y in region.y..region.y + region.height {
         for x in region.x..region.x + region.width {
             let var: f64 = (0..3)
@@ -116,7 +130,7 @@ pub fn allocation_bound(films: &[Film], region: Region) -> Option<f64> {
                     squares.sum::<f64>() / (k - 1) as f64
                 })
                 .sum();
-            sum_sigma += var.sqrt();
+            sum_power += var.powf(p);
             sum_var += var;
         }
     }
@@ -124,25 +138,43 @@ pub fn allocation_bound(films: &[Film], region: Region) -> Option<f64> {
     if sum_var.is_nan() || sum_var <= 0.0 {
         return None;
     }
-    let c4 = c4(k);
-    Some((sum_sigma * sum_sigma / (n * sum_var) / (c4 * c4)).min(1.0))
+    let sum_power = sum_power / chi_moment((k - 1) as f64, p);
+    let share = (sum_power.ln() * (a + 1.0) - n.ln() * a - sum_var.ln()) / a;
+    Some(share.exp().min(1.0))
 }
 
-/// c₄(k) = √(2/(k−1)) · Γ(k/2)/Γ((k−1)/2) for k ≥ 2: the mean of the sample standard deviation
-/// of k normal values over the true one. The ratio of Gammas starts from Γ(1)/Γ(½) = 1/√π
-/// (k = 2) or Γ(3/2)/Γ(1) = √π/2 (k = 3) and grows by k/(k − 1) from k to k + 2.
-fn c4(k: usize) -> f64 {
-    let sqrt_pi = std::f64::consts::PI.sqrt();
-    let (mut j, mut ratio) = if k.is_multiple_of(2) {
-        (2, 1.0 / sqrt_pi)
-    } else {
-        (3, sqrt_pi / 2.0)
-    };
-    while j < k {
-        ratio *= j as f64 / (j - 1) as f64;
-        j += 2;
+/// E[(X/ν)^p] for X ~ χ²_ν: (2/ν)^p · Γ(ν/2 + p) / Γ(ν/2). For p = ½ and ν = k − 1 this is
+/// c₄(k), the mean of the sample standard deviation of k normal values over the true one.
+fn chi_moment(nu: f64, p: f64) -> f64 {
+    (p * (2.0 / nu).ln() + ln_gamma(nu / 2.0 + p) - ln_gamma(nu / 2.0)).exp()
+}
+
+/// ln Γ(x) for x > 0: Stirling's series to its x⁻⁷ term after shifting x past 12 with
+/// Γ(x + 1) = x·Γ(x), where the first omitted term, 1/(1188x⁹), is below 2·10⁻¹³ (Abramowitz &
+/// Stegun 6.1.40).
+fn ln_gamma(mut x: f64) -> f64 {
+    let mut shift = 0.0;
+    while x < 12.0 {
+        shift += x.ln();
+        x += 1.0;
     }
-    (2.0 / (k - 1) as f64).sqrt() * ratio
+    let (inv, inv2) = (1.0 / x, 1.0 / (x * x));
+    let series = inv * (1.0 / 12.0 - inv2 * (1.0 / 360.0 - inv2 * (1.0 / 1260.0 - inv2 / 1680.0)));
+    (x - 0.5) * x.ln() - x + 0.5 * (2.0 * std::f64::consts::PI).ln() + series - shift
+}
+
+/// The exponent `a` of MSE ∝ n^−a over the uniform runs of [`VARIANCE_SAMPLES`] samples or more
+/// (fewer are dominated by aliasing more than by noise); `None` with fewer than two of them.
+fn convergence_exponent(uniform: &[Run]) -> Option<f64> {
+    let points: Vec<(f64, f64)> = runs_of(uniform, Method::Sobol)
+        .into_iter()
+        .filter(|r| r.samples >= VARIANCE_SAMPLES)
+        .map(|r| (f64::from(r.samples), r.mse_region))
+        .collect();
+    if points.len() < 2 {
+        return None;
+    }
+    loglog_slope(&points).map(|slope| -slope)
 }
 
 /// A render of `scene` by `integrator` at `spp` Sobol pixel samples, adaptive with `threshold`
@@ -220,13 +252,18 @@ pub fn run_adaptive_study(
             Ok(render_pixels(scene, options.integrator, variance_samples, None, seed)?.film)
         })
         .collect::<Result<Vec<Film>, RenderError>>()?;
-    let bound = allocation_bound(&films, region);
+    let bound = allocation_bound(&films, region, 1.0);
+    let bound_at_rate = convergence_exponent(&uniform)
+        .and_then(|a| Some((a, allocation_bound(&films, region, a)?)));
+    let share = |b: Option<f64>| b.map_or("-".into(), |b| format!("{b:.2}×"));
     progress(
         counts.len() + 1,
         total,
         format!(
-            "best allocation: {} of uniform's samples ({VARIANCE_RENDERS} renders of {variance_samples} spp)",
-            bound.map_or("-".into(), |b| format!("{b:.2}×"))
+            "best allocation: {} of uniform's samples, {} at the uniform runs' convergence \
+             ({VARIANCE_RENDERS} renders of {variance_samples} spp)",
+            share(bound),
+            share(bound_at_rate.map(|b| b.1))
         ),
     );
     let mut adaptive = Vec::with_capacity(options.thresholds.len());
@@ -264,6 +301,7 @@ pub fn run_adaptive_study(
         uniform,
         adaptive,
         bound,
+        bound_at_rate,
         variance_samples,
     })
 }
@@ -282,7 +320,8 @@ fn uniform_at(uniform: &[Run], target: f64, cost: impl Fn(&Run) -> f64) -> Optio
 /// The study as CSV: `render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,
 /// uniform_seconds,ratio,uniform_samples,samples_ratio`, uniform rows first (their threshold and
 /// last four columns empty), then the adaptive rows, then a `best_allocation` row whose
-/// `samples_ratio` (and, as before, `ratio`) is [`allocation_bound`].
+/// `samples_ratio` (and, as before, `ratio`) is [`allocation_bound`] at one-over-n convergence,
+/// and a `best_allocation_at_rate` row with the bound at the uniform runs' convergence.
 pub fn csv_text(study: &AdaptiveStudy) -> String {
     let mut s = String::from(
         "render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,uniform_seconds,ratio,\
@@ -313,6 +352,9 @@ pub fn csv_text(study: &AdaptiveStudy) -> String {
     }
     if let Some(b) = study.bound {
         s.push_str(&format!("best_allocation,,,,,,,,,{b:.6},,{b:.6}\n"));
+    }
+    if let Some((_, b)) = study.bound_at_rate {
+        s.push_str(&format!("best_allocation_at_rate,,,,,,,,,{b:.6},,{b:.6}\n"));
     }
     s
 }
@@ -403,16 +445,23 @@ mod tests {
             .collect()
     }
 
-    /// c₄ against its tabulated values (k = 2: √(2/π); k = 8: 0.9650).
+    /// The χ² moments against known values: c₄ tabulated (k = 2: √(2/π); k = 8: 0.9650), the
+    /// mean of χ²_ν/ν (1) and ln Γ at ½ and at integers.
     #[test]
-    fn c4_matches_its_table() {
+    fn chi_moments_match_their_tables() {
+        let c4 = |k: usize| chi_moment((k - 1) as f64, 0.5);
         assert!((c4(2) - (2.0 / std::f64::consts::PI).sqrt()).abs() < 1e-12);
         assert!((c4(3) - 0.886_226_925).abs() < 1e-9);
         assert!((c4(8) - 0.965_030).abs() < 1e-6);
+        assert!((chi_moment(7.0, 1.0) - 1.0).abs() < 1e-12);
+        assert!((ln_gamma(0.5) - std::f64::consts::PI.sqrt().ln()).abs() < 1e-12);
+        assert!((ln_gamma(5.0) - 24f64.ln()).abs() < 1e-12);
+        assert!((ln_gamma(12.0) - 39_916_800f64.ln()).abs() < 1e-11);
     }
 
     /// The allocation bound of films whose noise is known: equal noise everywhere gives 1, noise
-    /// in a quarter of the pixels (none elsewhere) gives ¼ (n ∝ σ puts every sample there).
+    /// in a quarter of the pixels (none elsewhere) gives ¼ at any rate of convergence (every
+    /// sample goes there), and unequal noise everywhere gains less the faster pixels converge.
     #[test]
     fn allocation_bound_follows_where_the_noise_is() {
         // Pixel values ±a around 1 over k films with alternating signs: variance a²·k/(k−1).
@@ -428,16 +477,39 @@ mod tests {
                 .collect()
         };
         let full = Region::full(4, 4);
-        let correction = c4(8) * c4(8);
-        let even = allocation_bound(&films(&|_| 0.1), full).unwrap();
-        assert!((even - 1.0).abs() < 1e-6, "{even}");
-        let quarter = allocation_bound(&films(&|p| if p < 4 { 0.1 } else { 0.0 }), full).unwrap();
-        assert!((quarter - 0.25 / correction).abs() < 1e-6, "{quarter}");
-        // Noise in every pixel but unequal: strictly between.
-        let ramp = allocation_bound(&films(&|p| 0.01 * (1 + p) as f32), full).unwrap();
-        assert!(ramp > quarter && ramp < even, "{ramp}");
-        assert_eq!(allocation_bound(&films(&|_| 0.0), full), None);
-        assert_eq!(allocation_bound(&films(&|_| 0.1)[..1], full), None);
+        for a in [1.0, 1.5, 2.0] {
+            let p = 1.0 / (a + 1.0);
+            let correction = chi_moment(7.0, p).powf((a + 1.0) / a);
+            let even = allocation_bound(&films(&|_| 0.1), full, a).unwrap();
+            assert!((even - 1.0).abs() < 1e-6, "{even}");
+            let quarter = |p: u32| if p < 4 { 0.1 } else { 0.0 };
+            let quarter = allocation_bound(&films(&quarter), full, a).unwrap();
+            assert!((quarter - 0.25 / correction).abs() < 1e-6, "{a}: {quarter}");
+            // Noise in every pixel but unequal: strictly between.
+            let ramp = allocation_bound(&films(&|p| 0.01 * (1 + p) as f32), full, a).unwrap();
+            assert!(ramp > quarter && ramp < even, "{ramp}");
+        }
+        let ramp = |a| allocation_bound(&films(&|p| 0.01 * (1 + p) as f32), full, a).unwrap();
+        assert!(ramp(1.0) < ramp(1.5) && ramp(1.5) < ramp(2.0));
+        assert_eq!(allocation_bound(&films(&|_| 0.0), full, 1.0), None);
+        assert_eq!(allocation_bound(&films(&|_| 0.1)[..1], full, 1.0), None);
+        assert_eq!(allocation_bound(&films(&|_| 0.1), full, 0.0), None);
+    }
+
+    /// The convergence exponent is fitted from 16 samples up: a curve falling as 1/n² there is
+    /// found to be a = 2 whatever its first runs do.
+    #[test]
+    fn convergence_is_fitted_past_the_first_runs() {
+        let u = uniform(&[
+            (1, 0.1, 1.0),
+            (4, 0.4, 0.9),
+            (16, 1.6, 1.0 / 256.0),
+            (32, 3.2, 1.0 / 1024.0),
+            (64, 6.4, 1.0 / 4096.0),
+        ]);
+        let a = convergence_exponent(&u).unwrap();
+        assert!((a - 2.0).abs() < 1e-9, "{a}");
+        assert_eq!(convergence_exponent(&u[..3]), None);
     }
 
     /// The uniform time and samples at an error are interpolated in log-log between the runs
@@ -469,9 +541,10 @@ mod tests {
             uniform: u,
             adaptive: vec![run],
             bound: Some(0.25),
+            bound_at_rate: Some((1.5, 0.3)),
             variance_samples: 16,
         });
-        assert_eq!(csv.lines().count(), 6);
+        assert_eq!(csv.lines().count(), 7);
         let columns = csv.lines().next().unwrap().split(',').count();
         assert!(
             csv.lines().all(|l| l.split(',').count() == columns),
@@ -484,8 +557,12 @@ mod tests {
             "{adaptive}"
         );
         assert_eq!(
-            csv.lines().last(),
+            csv.lines().nth(5),
             Some("best_allocation,,,,,,,,,0.250000,,0.250000")
+        );
+        assert_eq!(
+            csv.lines().last(),
+            Some("best_allocation_at_rate,,,,,,,,,0.300000,,0.300000")
         );
     }
 }
