@@ -221,13 +221,17 @@ pub(super) fn trace(
                     if round > 0 && out_of_time() {
                         break;
                     }
-                    // A pixel's state changes only once its round is complete.
-                    if tracer.cancelled() {
-                        return tracer.counts();
-                    }
+                    // A pixel's state changes only once its round is complete; once the render
+                    // is cancelled the round's remaining samples are skipped and it is dropped.
                     let mut next = *p;
                     let x = region.x0 + i as u32;
-                    next.add_round(start, end, |s| work.sample(&mut tracer, x, y, s));
+                    next.add_round(start, end, |s| {
+                        if tracer.cancelled() {
+                            Vec3::ZERO
+                        } else {
+                            work.sample(&mut tracer, x, y, s)
+                        }
+                    });
                     if tracer.cancelled() {
                         return tracer.counts();
                     }
