@@ -3,7 +3,8 @@
 //!
 //! Round boundaries double: 4, 8, 16, … samples (fewer rounds for small `spp`), so a pixel that
 //! stops after round r holds exactly samples `0..n_r` of the full pattern. After every round from
-//! the `FIRST_DECISION`th sample on, the error of each pixel is estimated from how far apart the
+//! the `EARLY_DECISION`th sample on (where a pixel needs half the threshold to stop; from the
+//! `FIRST_DECISION`th on, the threshold), the error of each pixel is estimated from how far apart the
 //! means of four groups of its samples lie, after Dammertz et al. 2010 ("A hierarchical automatic
 //! stopping condition for Monte Carlo global illumination") and Cycles (Blender's
 //! `kernel/film/adaptive_sampling.h`), which compare two groups. The groups are the four
@@ -64,15 +65,35 @@ pub const DEFAULT_THRESHOLD: f32 = 0.01;
 /// The fewest samples a pixel takes before its error is first estimated.
 const FIRST_ROUND: u32 = 4;
 
-/// The samples every pixel takes before any may stop under a threshold above 0. The estimate
-/// compares two groups of a pixel's samples, one draw of their difference, and with four
-/// samples a group a pixel of a noisy region often looks converged: on `scenes/penumbra.json`
-/// the first decision at 4 samples gave 1.0–1.35× uniform sampling's time at equal error for
-/// thresholds 0.04 and 0.02, at 16 samples 0.90–0.95× (`benches/adaptive.py`; docs/adaptive.md).
-/// Cycles waits longer for its estimate, max(4, ⌈16/T^0.3⌉) samples (64 at T = 0.01, Blender's
-/// `scene/integrator.cpp`); here that cost the thin-lens scene 1.3× the time, as its in-focus
-/// half then takes 64 samples where 16 already agree.
+/// The samples after which a pixel may stop at the full threshold (above 0). Deciding from 4
+/// samples let pixels of a noisy region stop on a lucky draw: on `scenes/penumbra.json` that
+/// gave 1.0–1.35× uniform sampling's time at equal error for thresholds 0.04 and 0.02, at 16
+/// samples 0.90–0.95× (`benches/adaptive.py`, with an earlier two-group estimate;
+/// docs/adaptive.md). Cycles waits longer for its estimate, max(4, ⌈16/T^0.3⌉) samples (64 at
+/// T = 0.01, Blender's `scene/integrator.cpp`); here that cost the thin-lens scene 1.3× the time,
+/// as its in-focus half then takes 64 samples where 16 already agree.
 const FIRST_DECISION: u32 = 16;
+
+/// The samples after which a pixel may stop early, at [`EARLY_SHARE`] of the threshold: where
+/// every error around a pixel is that far below the threshold after 8 samples, 8 more rarely
+/// change the answer. With it the samples ratio at equal error (`raytracer study --adaptive`)
+/// fell from 0.39 and 0.26 to 0.23 and 0.22 on the Cornell box at T = 0.64 and 0.32, from 0.69
+/// to 0.56 on `arealight_jittered.json` at T = 0.08 and from 0.78 to 0.69 on the penumbra at
+/// T = 0.04, and moved by 0.01 or less at every tighter threshold (docs/adaptive.md).
+const EARLY_DECISION: u32 = 8;
+const EARLY_SHARE: f32 = 0.5;
+
+/// The threshold the decision after `end` samples applies, `None` where no pixel may stop yet.
+/// A threshold of 0 stops only pixels whose samples all agree: nothing to wait for.
+fn decision_threshold(end: u32, threshold: f32) -> Option<f32> {
+    if threshold <= 0.0 || end >= FIRST_DECISION {
+        Some(threshold)
+    } else if end >= EARLY_DECISION {
+        Some(threshold * EARLY_SHARE)
+    } else {
+        None
+    }
+}
 
 /// The sample counts at which rounds end: doubling from `FIRST_ROUND` up to `spp`.
 pub fn round_ends(spp: u32) -> Vec<u32> {
@@ -199,12 +220,6 @@ pub(super) fn trace(
     let deadline = settings.time_limit.map(|t| Instant::now() + t);
     let out_of_time = || deadline.is_some_and(|d| Instant::now() >= d);
     let mut rays = RayCounts::default();
-    // A threshold of 0 stops only pixels whose samples all agree: nothing to wait for.
-    let floor = if settings.threshold > 0.0 {
-        FIRST_DECISION
-    } else {
-        0
-    };
     let mut start = 0;
     let mut cancelled = false;
     for (round, &end) in ends.iter().enumerate() {
@@ -252,8 +267,9 @@ pub(super) fn trace(
             break;
         }
         start = end;
-        if round + 1 < ends.len() && end >= floor {
-            decide(&mut states, region, settings.threshold);
+        let threshold = decision_threshold(end, settings.threshold);
+        if let Some(threshold) = threshold.filter(|_| round + 1 < ends.len()) {
+            decide(&mut states, region, threshold);
             if !states.iter().any(|p| p.active) {
                 break;
             }
@@ -306,6 +322,16 @@ fn decide(states: &mut [PixelState], region: PixelRect, threshold: f32) {
 mod tests {
     use super::*;
     use glam::Vec3;
+
+    #[test]
+    fn pixels_stop_before_16_samples_only_far_below_the_threshold() {
+        assert_eq!(decision_threshold(4, 0.01), None);
+        assert_eq!(decision_threshold(8, 0.01), Some(0.005));
+        assert_eq!(decision_threshold(12, 0.01), Some(0.005));
+        assert_eq!(decision_threshold(16, 0.01), Some(0.01));
+        assert_eq!(decision_threshold(64, 0.01), Some(0.01));
+        assert_eq!(decision_threshold(4, 0.0), Some(0.0));
+    }
 
     #[test]
     fn rounds_double_up_to_spp() {
