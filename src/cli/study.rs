@@ -486,9 +486,9 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             r.mse_region,
             r.uniform_seconds
                 .map_or("out of range".into(), |u| format!("{u:.4}")),
-            r.ratio().map_or("-".into(), |q| format!("{q:.2}×")),
+            study::adaptive::times(r.ratio()),
             r.uniform_samples.map_or("-".into(), |u| format!("{u:.1}")),
-            r.samples_ratio().map_or("-".into(), |q| format!("{q:.2}×"))
+            study::adaptive::times(r.samples_ratio())
         );
     }
     if let Some(b) = result.bound {

@@ -62,7 +62,7 @@ impl AdaptiveRun {
     }
 
     /// Adaptive samples over uniform samples at the same error: the ratio without the clock, the
-    /// same on every machine and run, and in the units of [`allocation_bound`]. It leaves out
+    /// same on every machine and run, and in the units of [`PixelNoise::allocation_bound`]. It leaves out
     /// that the pixels adaptive sampling spends its samples on may cost more a sample than the
     /// image's average, and the rounds' own cost.
     pub fn samples_ratio(&self) -> Option<f64> {
@@ -76,11 +76,11 @@ pub struct AdaptiveStudy {
     /// Uniform runs (sampler Sobol), in sample order.
     pub uniform: Vec<Run>,
     pub adaptive: Vec<AdaptiveRun>,
-    /// [`allocation_bound`] of the scene over the study's region at one-over-n convergence: no
+    /// [`PixelNoise::allocation_bound`] of the scene over the study's region at one-over-n convergence: no
     /// adaptive run can do better where each pixel's error falls as one over its samples.
     pub bound: Option<f64>,
     /// The exponent `a` of the uniform runs' convergence, MSE ∝ n^−a, fitted from
-    /// [`VARIANCE_SAMPLES`] samples up, and [`allocation_bound`] at it: the bound where every
+    /// [`VARIANCE_SAMPLES`] samples up, and [`PixelNoise::allocation_bound`] at it: the bound where every
     /// pixel converges as the image does.
     pub bound_at_rate: Option<(f64, f64)>,
     /// Pixel samples in each of the [`VARIANCE_RENDERS`] renders the bound was measured from.
@@ -88,59 +88,82 @@ pub struct AdaptiveStudy {
 }
 
 /// Renders, under seeds of their own, of `VARIANCE_SAMPLES` uniform Sobol pixel samples each:
-/// the spread of their pixels gives each pixel's variance for [`allocation_bound`].
+/// the spread of their pixels gives each pixel's variance for [`PixelNoise::allocation_bound`].
 pub const VARIANCE_RENDERS: u64 = 8;
 pub const VARIANCE_SAMPLES: u32 = 16;
 /// The first of the variance renders' seeds (the runs use `--seed`, the reference its own).
 const VARIANCE_SEED: u64 = 0x0a11_0ca7_e000;
 
-/// The least share of uniform sampling's samples with which any allocation of samples to the
-/// pixels of `region` reaches uniform sampling's MSE there, when each pixel's error variance falls
-/// as σᵢ²·(16/nᵢ)^a, σᵢ² its variance at 16 samples (a = 1: independent samples; stratified ones
-/// converge faster, a > 1).
-///
-/// Minimising Σnᵢ under a fixed Σσᵢ²·nᵢ^−a (a Lagrange multiplier) gives nᵢ ∝ σᵢ^(2p) with
-/// p = 1/(a + 1), and the share `(S^(a+1) / (N^a · Σσᵢ²))^(1/a)` with S = Σσᵢ^(2p) over the N
-/// pixels. For a = 1 that is (Σσᵢ)² / (N·Σσᵢ²) (nᵢ ∝ σᵢ; Cauchy–Schwarz): 1 when every pixel is
-/// as noisy as the others, small when the noise sits in few pixels. The faster pixels converge,
-/// the less moving samples between them buys, and the share tends to 1 as a grows.
-///
-/// σᵢ² is the variance of pixel i over `films`, independent renders alike but for their seeds,
-/// summed over RGB. Its power σ̂^(2p) estimated from k renders is low on average by the factor
-/// E[(χ²_ν/ν)^p], ν = k − 1 (for p = ½ that is c₄(k) of Gurland & Tripathi 1971, 0.965 at k = 8),
-/// which the share corrects for; fewer degrees of freedom than RGB's could give make that
-/// correction the cautious one. Past the model: a real adaptive render also pays for its floor of
-/// samples, its rounds and its estimate, and pixels converge at rates of their own (an edge
-/// slower than a smooth gradient). `None` for fewer than two films, a noiseless region or
-/// `a` ≤ 0.
-pub fn allocation_bound(films: &[Film], region: Region, a: f64) -> Option<f64> {
-    let k = films.len();
-    if k < 2 || a.is_nan() || a <= 0.0 {
-        return None;
-    }
-    let p = 1.0 / (a + 1.0);
-    let (mut sum_power, mut sum_var) = (0.0f64, 0.0f64);
-    for y in region.y..region.y + region.height {
-        for x in region.x..region.x + region.width {
-            let var: f64 = (0..3)
-                .map(|c| {
-                    let value = |f: &Film| f64::from(f.get(x, y)[c]);
-                    let mean = films.iter().map(value).sum::<f64>() / k as f64;
-                    let squares = films.iter().map(|f| (value(f) - mean).powi(2));
-                    squares.sum::<f64>() / (k - 1) as f64
-                })
-                .sum();
-            sum_power += var.powf(p);
-            sum_var += var;
+/// Each pixel's variance over independent renders alike but for their seeds, summed over RGB: the
+/// noise [`PixelNoise::allocation_bound`] allocates samples to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PixelNoise {
+    /// σᵢ² of each pixel of the region, row-major.
+    variances: Vec<f64>,
+    /// The renders they were measured from.
+    renders: usize,
+}
+
+impl PixelNoise {
+    /// The variances of the pixels of `region` over `films`; `None` for fewer than two films.
+    pub fn measure(films: &[Film], region: Region) -> Option<PixelNoise> {
+        let k = films.len();
+        if k < 2 {
+            return None;
         }
+        let mut variances = Vec::with_capacity(region.width as usize * region.height as usize);
+        for y in region.y..region.y + region.height {
+            for x in region.x..region.x + region.width {
+                let var: f64 = (0..3)
+                    .map(|c| {
+                        let value = |f: &Film| f64::from(f.get(x, y)[c]);
+                        let mean = films.iter().map(value).sum::<f64>() / k as f64;
+                        let squares = films.iter().map(|f| (value(f) - mean).powi(2));
+                        squares.sum::<f64>() / (k - 1) as f64
+                    })
+                    .sum();
+                variances.push(var);
+            }
+        }
+        Some(PixelNoise {
+            variances,
+            renders: k,
+        })
     }
-    let n = region.width as f64 * region.height as f64;
-    if sum_var.is_nan() || sum_var <= 0.0 {
-        return None;
+
+    /// The least share of uniform sampling's samples with which any allocation of samples to
+    /// the pixels reaches uniform sampling's MSE over them, when each pixel's error variance
+    /// falls as σᵢ²·(16/nᵢ)^a, σᵢ² its variance at 16 samples (a = 1: independent samples;
+    /// stratified ones converge faster, a > 1).
+    ///
+    /// Minimising Σnᵢ under a fixed Σσᵢ²·nᵢ^−a (a Lagrange multiplier) gives nᵢ ∝ σᵢ^(2p) with
+    /// p = 1/(a + 1), and the share `(S^(a+1) / (N^a · Σσᵢ²))^(1/a)` with S = Σσᵢ^(2p) over the
+    /// N pixels. For a = 1 that is (Σσᵢ)² / (N·Σσᵢ²) (nᵢ ∝ σᵢ; Cauchy–Schwarz): 1 when every
+    /// pixel is as noisy as the others, small when the noise sits in few pixels. The faster
+    /// pixels converge, the less moving samples between them buys, and the share tends to 1 as
+    /// a grows.
+    ///
+    /// The power σ̂^(2p) estimated from k renders is low on average by the factor E[(χ²_ν/ν)^p],
+    /// ν = k − 1 (for p = ½ that is c₄(k) of Gurland & Tripathi 1971, 0.965 at k = 8), which the
+    /// share corrects for; fewer degrees of freedom than RGB's could give make that correction
+    /// the cautious one. Past the model: a real adaptive render also pays for its floor of
+    /// samples, its rounds and its estimate, and pixels converge at rates of their own (an edge
+    /// slower than a smooth gradient). `None` for a noiseless region or `a` ≤ 0.
+    pub fn allocation_bound(&self, a: f64) -> Option<f64> {
+        if a.is_nan() || a <= 0.0 {
+            return None;
+        }
+        let p = 1.0 / (a + 1.0);
+        let sum_var: f64 = self.variances.iter().sum();
+        if sum_var.is_nan() || sum_var <= 0.0 {
+            return None;
+        }
+        let sum_power: f64 = self.variances.iter().map(|v| v.powf(p)).sum();
+        let sum_power = sum_power / chi_moment((self.renders - 1) as f64, p);
+        let n = self.variances.len() as f64;
+        let share = (sum_power.ln() * (a + 1.0) - n.ln() * a - sum_var.ln()) / a;
+        Some(share.exp().min(1.0))
     }
-    let sum_power = sum_power / chi_moment((k - 1) as f64, p);
-    let share = (sum_power.ln() * (a + 1.0) - n.ln() * a - sum_var.ln()) / a;
-    Some(share.exp().min(1.0))
 }
 
 /// E[(X/ν)^p] for X ~ χ²_ν: (2/ν)^p · Γ(ν/2 + p) / Γ(ν/2). For p = ½ and ν = k − 1 this is
@@ -252,18 +275,18 @@ pub fn run_adaptive_study(
             Ok(render_pixels(scene, options.integrator, variance_samples, None, seed)?.film)
         })
         .collect::<Result<Vec<Film>, RenderError>>()?;
-    let bound = allocation_bound(&films, region, 1.0);
+    let noise = PixelNoise::measure(&films, region);
+    let bound = noise.as_ref().and_then(|n| n.allocation_bound(1.0));
     let bound_at_rate = convergence_exponent(&uniform)
-        .and_then(|a| Some((a, allocation_bound(&films, region, a)?)));
-    let share = |b: Option<f64>| b.map_or("-".into(), |b| format!("{b:.2}×"));
+        .and_then(|a| Some((a, noise.as_ref()?.allocation_bound(a)?)));
     progress(
         counts.len() + 1,
         total,
         format!(
             "best allocation: {} of uniform's samples, {} at the uniform runs' convergence \
              ({VARIANCE_RENDERS} renders of {variance_samples} spp)",
-            share(bound),
-            share(bound_at_rate.map(|b| b.1))
+            times(bound),
+            times(bound_at_rate.map(|b| b.1))
         ),
     );
     let mut adaptive = Vec::with_capacity(options.thresholds.len());
@@ -291,8 +314,8 @@ pub fn run_adaptive_study(
             total,
             format!(
                 "adaptive T = {threshold} ({mean_samples:.1} spp)  {seconds:.4} s  MSE {mse_region:.3e}  ratio {}, samples {}",
-                run.ratio().map_or("-".into(), |x| format!("{x:.2}×")),
-                run.samples_ratio().map_or("-".into(), |x| format!("{x:.2}×"))
+                times(run.ratio()),
+                times(run.samples_ratio())
             ),
         );
         adaptive.push(run);
@@ -304,6 +327,11 @@ pub fn run_adaptive_study(
         bound_at_rate,
         variance_samples,
     })
+}
+
+/// A ratio as the study prints it, `0.42×`, or `-` where there is none.
+pub fn times(ratio: Option<f64>) -> String {
+    ratio.map_or("-".into(), |x| format!("{x:.2}×"))
 }
 
 /// What uniform sampling spends (`cost`: its time, its samples) to reach `target`:
@@ -320,7 +348,7 @@ fn uniform_at(uniform: &[Run], target: f64, cost: impl Fn(&Run) -> f64) -> Optio
 /// The study as CSV: `render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,
 /// uniform_seconds,ratio,uniform_samples,samples_ratio`, uniform rows first (their threshold and
 /// last four columns empty), then the adaptive rows, then a `best_allocation` row whose
-/// `samples_ratio` (and, as before, `ratio`) is [`allocation_bound`] at one-over-n convergence,
+/// `samples_ratio` (and, as before, `ratio`) is [`PixelNoise::allocation_bound`] at one-over-n convergence,
 /// and a `best_allocation_at_rate` row with the bound at the uniform runs' convergence.
 pub fn csv_text(study: &AdaptiveStudy) -> String {
     let mut s = String::from(
@@ -477,23 +505,26 @@ mod tests {
                 .collect()
         };
         let full = Region::full(4, 4);
+        let allocation_bound = |films: &[Film], a: f64| {
+            PixelNoise::measure(films, full).and_then(|n| n.allocation_bound(a))
+        };
         for a in [1.0, 1.5, 2.0] {
             let p = 1.0 / (a + 1.0);
             let correction = chi_moment(7.0, p).powf((a + 1.0) / a);
-            let even = allocation_bound(&films(&|_| 0.1), full, a).unwrap();
+            let even = allocation_bound(&films(&|_| 0.1), a).unwrap();
             assert!((even - 1.0).abs() < 1e-6, "{even}");
             let quarter = |p: u32| if p < 4 { 0.1 } else { 0.0 };
-            let quarter = allocation_bound(&films(&quarter), full, a).unwrap();
+            let quarter = allocation_bound(&films(&quarter), a).unwrap();
             assert!((quarter - 0.25 / correction).abs() < 1e-6, "{a}: {quarter}");
             // Noise in every pixel but unequal: strictly between.
-            let ramp = allocation_bound(&films(&|p| 0.01 * (1 + p) as f32), full, a).unwrap();
+            let ramp = allocation_bound(&films(&|p| 0.01 * (1 + p) as f32), a).unwrap();
             assert!(ramp > quarter && ramp < even, "{ramp}");
         }
-        let ramp = |a| allocation_bound(&films(&|p| 0.01 * (1 + p) as f32), full, a).unwrap();
+        let ramp = |a| allocation_bound(&films(&|p| 0.01 * (1 + p) as f32), a).unwrap();
         assert!(ramp(1.0) < ramp(1.5) && ramp(1.5) < ramp(2.0));
-        assert_eq!(allocation_bound(&films(&|_| 0.0), full, 1.0), None);
-        assert_eq!(allocation_bound(&films(&|_| 0.1)[..1], full, 1.0), None);
-        assert_eq!(allocation_bound(&films(&|_| 0.1), full, 0.0), None);
+        assert_eq!(allocation_bound(&films(&|_| 0.0), 1.0), None);
+        assert_eq!(allocation_bound(&films(&|_| 0.1)[..1], 1.0), None);
+        assert_eq!(allocation_bound(&films(&|_| 0.1), 0.0), None);
     }
 
     /// The convergence exponent is fitted from 16 samples up: a curve falling as 1/n² there is
