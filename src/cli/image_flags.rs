@@ -28,14 +28,14 @@ pub(crate) struct ImageFlags {
     /// method): random, jittered or sobol.
     #[arg(long)]
     pub sampler: Option<Method>,
-    /// Adaptive sampling: each pixel takes samples in rounds (4, 8, 16, …) until, from 16 samples
-    /// on, the error estimate around it is at most --noise-threshold, --spp at most (pixel samples
-    /// then default to sobol, whose prefixes are stratified).
+    /// Adaptive sampling: each pixel takes samples in rounds (4, 8, 16, …) until the error
+    /// estimate around it is at most --noise-threshold (from 16 samples on; after 8, at most half
+    /// of it), --spp at most (pixel samples then default to sobol, whose prefixes are stratified).
     #[arg(long)]
     pub adaptive: bool,
-    /// The error at which an adaptive pixel stops: the standard error of its mean estimated from
-    /// its last round against the samples before (half their difference when the round doubled
-    /// them), summed over RGB, over 10⁻⁴ + √(RGB sum of the mean), as Cycles scales it.
+    /// The error at which an adaptive pixel stops: the standard error of its mean, estimated from
+    /// the spread of the means of four consecutive quarters of its samples, summed over RGB, over
+    /// 10⁻⁴ + √(RGB sum of the mean), as Cycles scales it. Default 0.01.
     #[arg(long, value_name = "T", requires = "adaptive", value_parser = values::positive_f32)]
     pub noise_threshold: Option<f32>,
     /// Render progressively for this many seconds, then write what is there: rounds of samples
