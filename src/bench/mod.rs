@@ -516,7 +516,7 @@ pub fn estimate_render(
         let i = (traced * stride) % pixels;
         let (x, y) = ((i % w as u64) as u32, (i / w as u64) as u32);
         let key = SampleKey::new(x, y, 0, 1, options.seed);
-        let lens = key.pixel_pattern(options.pixel_method, 1);
+        let lens = key.camera_pattern(options.pixel_method).1;
         let ray = scene.camera.generate_ray(x, y, Vec2::splat(0.5), lens);
         std::hint::black_box(tracer.trace_camera(&ray, &key));
         traced += 1;

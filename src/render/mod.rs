@@ -457,16 +457,14 @@ impl Work<'_> {
     fn sample(&self, tracer: &mut Tracer, x: u32, y: u32, s: u32) -> Vec3 {
         let options = self.options;
         let key = SampleKey::new(x, y, s, self.spp, options.seed);
-        let film = if self.spp == 1 {
-            Vec2::splat(0.5)
-        } else {
-            key.pixel_pattern(options.pixel_method, 0)
-        };
-        // A pinhole camera has no lens to sample.
-        let lens = if self.scene.camera.lens.is_some() {
-            key.pixel_pattern(options.pixel_method, 1)
-        } else {
-            Vec2::splat(0.5)
+        let method = options.pixel_method;
+        // One sample a pixel goes through its centre; a pinhole camera has no lens to sample.
+        let centre = Vec2::splat(0.5);
+        let (film, lens) = match (self.scene.camera.lens.is_some(), self.spp == 1) {
+            (false, true) => (centre, centre),
+            (false, false) => (key.pixel_pattern(method, 0), centre),
+            (true, true) => (centre, key.camera_pattern(method).1),
+            (true, false) => key.camera_pattern(method),
         };
         let ray = self.scene.camera.generate_ray(x, y, film, lens);
         tracer.trace_camera(&ray, &key)
