@@ -239,7 +239,7 @@ fn an_adaptive_study_compares_at_equal_error() {
         lines.next(),
         Some(
             "render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,uniform_seconds,\
-             ratio,uniform_samples,samples_ratio"
+             ratio,uniform_samples,samples_ratio,known_noise_ratio"
         )
     );
     let rows: Vec<Vec<String>> = lines
@@ -269,7 +269,12 @@ fn an_adaptive_study_compares_at_equal_error() {
     assert!(String::from_utf8_lossy(&out.stdout).contains("best allocation: "));
     let mean = |r: &Vec<String>| r[3].parse::<f64>().unwrap();
     for r in &adaptive {
-        assert_eq!(r.len(), 12, "{r:?}");
+        assert_eq!(r.len(), 13, "{r:?}");
+        // The rule with each pixel's noise known: an allocation like any other, so not below
+        // the best one at the same rate (up to the bound's correction for its estimate's bias).
+        let known: f64 = r[12].parse().unwrap();
+        let best: f64 = at_rate[9].parse().unwrap();
+        assert!(known >= 0.9 * best && known <= 1.5, "{r:?}");
         assert!((16.0..=64.0).contains(&mean(r)), "{r:?}");
         let mse: f64 = r[6].parse().unwrap();
         assert!(mse.is_finite() && mse > 0.0, "{r:?}");

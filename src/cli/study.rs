@@ -458,7 +458,7 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
     )?;
     outln!("MSE over the {what}; uniform and adaptive both with Sobol pixel samples");
     outln!(
-        "{:<18} {:>9} {:>10} {:>11} {:>14} {:>7} {:>11} {:>7}",
+        "{:<18} {:>9} {:>10} {:>11} {:>14} {:>7} {:>11} {:>7} {:>7}",
         "render",
         "spp",
         "seconds",
@@ -466,7 +466,8 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         "uniform s",
         "ratio",
         "uniform spp",
-        "ratio"
+        "ratio",
+        "known"
     );
     for r in &result.uniform {
         outln!(
@@ -479,7 +480,7 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
     }
     for r in &result.adaptive {
         outln!(
-            "{:<18} {:>9.1} {:>10.4} {:>11.3e} {:>14} {:>7} {:>11} {:>7}",
+            "{:<18} {:>9.1} {:>10.4} {:>11.3e} {:>14} {:>7} {:>11} {:>7} {:>7}",
             format!("adaptive T={}", r.threshold),
             r.mean_samples,
             r.seconds,
@@ -488,7 +489,8 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
                 .map_or("out of range".into(), |u| format!("{u:.4}")),
             study::adaptive::times(r.ratio()),
             r.uniform_samples.map_or("-".into(), |u| format!("{u:.1}")),
-            study::adaptive::times(r.samples_ratio())
+            study::adaptive::times(r.samples_ratio()),
+            study::adaptive::times(r.known_noise_ratio)
         );
     }
     if let Some(b) = result.bound {
@@ -504,6 +506,10 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             "best allocation at the uniform runs' convergence, MSE ∝ n^-{a:.2} from {} spp up: \
              {b:.2}× uniform's samples",
             study::adaptive::VARIANCE_SAMPLES
+        );
+        outln!(
+            "known: the samples ratio the same stopping rule would reach with an exact error \
+             estimate (each pixel's noise as measured, converging at that rate)"
         );
     }
     Ok(())

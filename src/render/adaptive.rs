@@ -304,24 +304,101 @@ fn decide(states: &mut [PixelState], region: PixelRect, threshold: f32) {
     let errors: Vec<f32> = states.par_iter().map(PixelState::error).collect();
     states.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
         for (x, p) in row.iter_mut().enumerate() {
-            if !p.active {
-                continue;
+            if p.active {
+                p.active = worst_around(&errors, (w, h), (x, y)) > threshold;
             }
-            let mut worst = 0.0f32;
-            for ny in y.saturating_sub(1)..(y + 2).min(h) {
-                for nx in x.saturating_sub(1)..(x + 2).min(w) {
-                    worst = worst.max(errors[ny * w + nx]);
-                }
-            }
-            p.active = worst > threshold;
         }
     });
+}
+
+/// The largest of `errors` (row-major, `w × h`) in the 3×3 neighbourhood of `(x, y)`, clipped
+/// to the image.
+#[inline]
+fn worst_around(errors: &[f32], (w, h): (usize, usize), (x, y): (usize, usize)) -> f32 {
+    let mut worst = 0.0f32;
+    for ny in y.saturating_sub(1)..(y + 2).min(h) {
+        for nx in x.saturating_sub(1)..(x + 2).min(w) {
+            worst = worst.max(errors[ny * w + nx]);
+        }
+    }
+    worst
+}
+
+/// The samples each pixel of a `w × h` image takes under this module's stopping rule (its
+/// rounds up to `spp`, its decisions at `threshold`, its neighbourhood) when the error a pixel's
+/// estimate gives after `n` samples is known: `error(i, n)` for pixel `i`, row-major. What an
+/// adaptive render would do with an exact estimate; `raytracer study --adaptive` feeds it each
+/// pixel's measured noise, to tell what the rule itself costs from what its estimate costs.
+pub fn samples_with_known_errors(
+    (w, h): (usize, usize),
+    spp: u32,
+    threshold: f32,
+    error: impl Fn(usize, u32) -> f32,
+) -> Vec<u32> {
+    let ends = round_ends(spp);
+    let mut samples = vec![0u32; w * h];
+    let mut active = vec![true; w * h];
+    for (round, &end) in ends.iter().enumerate() {
+        for (n, _) in samples.iter_mut().zip(&active).filter(|(_, &a)| a) {
+            *n = end;
+        }
+        let Some(threshold) = decision_threshold(end, threshold).filter(|_| round + 1 < ends.len())
+        else {
+            continue;
+        };
+        let errors: Vec<f32> = samples
+            .iter()
+            .enumerate()
+            .map(|(i, &n)| error(i, n))
+            .collect();
+        for (i, a) in active.iter_mut().enumerate().filter(|(_, a)| **a) {
+            *a = worst_around(&errors, (w, h), (i % w, i / w)) > threshold;
+        }
+        if !active.contains(&true) {
+            break;
+        }
+    }
+    samples
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use glam::Vec3;
+
+    /// With known errors the rule stops each pixel at the first decision whose threshold its
+    /// neighbourhood's errors meet, and a noisy pixel keeps its neighbours going.
+    #[test]
+    fn known_errors_stop_pixels_at_the_rule_s_decisions() {
+        // Error c/√n: after n samples at most T once n ≥ (c/T)².
+        let stop =
+            |c: f32| samples_with_known_errors((1, 1), 256, 0.01, |_, n| c / (n as f32).sqrt())[0];
+        assert_eq!(stop(0.0), 8); // at 8, under T/2
+        assert_eq!(stop(0.014), 8); // 0.0049 ≤ 0.005
+        assert_eq!(stop(0.015), 16); // 0.0053 > T/2 at 8; 0.0038 ≤ T at 16
+        assert_eq!(stop(0.04), 16);
+        assert_eq!(stop(0.05), 32);
+        assert_eq!(stop(0.1), 128);
+        assert_eq!(stop(1.0), 256); // never under: the cap
+                                    // A 5×4 image, flat but for one pixel: it and its 3×3 neighbourhood take what it needs.
+        let n = samples_with_known_errors((5, 4), 256, 0.01, |i, n| {
+            if i == 7 {
+                0.1 / (n as f32).sqrt()
+            } else {
+                0.0
+            }
+        });
+        for (i, &k) in n.iter().enumerate() {
+            let (x, y) = (i % 5, i / 5);
+            let near = x.abs_diff(2) <= 1 && y.abs_diff(1) <= 1;
+            assert_eq!(k, if near { 128 } else { 8 }, "pixel ({x}, {y}): {n:?}");
+        }
+        // Fewer samples than a decision needs: every pixel takes them all.
+        assert_eq!(
+            samples_with_known_errors((2, 2), 6, 0.01, |_, _| 0.0),
+            [6; 4]
+        );
+    }
 
     #[test]
     fn pixels_stop_before_16_samples_only_far_below_the_threshold() {

@@ -16,7 +16,7 @@ use super::{
 use crate::film::Film;
 use crate::integrator::Kind;
 use crate::metric::{mean_flip, mse, Region};
-use crate::render::adaptive::Adaptive;
+use crate::render::adaptive::{samples_with_known_errors, Adaptive};
 use crate::render::{render, RenderError, RenderOptions, RenderOutput};
 use crate::sampling::Method;
 use crate::scene::Scene;
@@ -53,6 +53,9 @@ pub struct AdaptiveRun {
     pub uniform_seconds: Option<f64>,
     /// The samples per pixel uniform sampling needs for `mse_region`, likewise.
     pub uniform_samples: Option<f64>,
+    /// [`PixelNoise::known_noise_share`] at this threshold: the samples ratio the same rule
+    /// would reach with an exact error estimate, at the uniform runs' convergence.
+    pub known_noise_ratio: Option<f64>,
 }
 
 impl AdaptiveRun {
@@ -94,12 +97,12 @@ pub const VARIANCE_SAMPLES: u32 = 16;
 /// The first of the variance renders' seeds (the runs use `--seed`, the reference its own).
 const VARIANCE_SEED: u64 = 0x0a11_0ca7_e000;
 
-/// Each pixel's variance over independent renders alike but for their seeds, summed over RGB: the
-/// noise [`PixelNoise::allocation_bound`] allocates samples to.
+/// Each pixel's variance over independent renders alike but for their seeds: the noise
+/// [`PixelNoise::allocation_bound`] allocates samples to.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PixelNoise {
-    /// σᵢ² of each pixel of the region, row-major.
-    variances: Vec<f64>,
+    /// σᵢ² of each pixel of the region, row-major, per channel (their sum is the pixel's σᵢ²).
+    variances: Vec<[f64; 3]>,
     /// The renders they were measured from.
     renders: usize,
 }
@@ -114,14 +117,12 @@ impl PixelNoise {
         let mut variances = Vec::with_capacity(region.width as usize * region.height as usize);
         for y in region.y..region.y + region.height {
             for x in region.x..region.x + region.width {
-                let var: f64 = (0..3)
-                    .map(|c| {
-                        let value = |f: &Film| f64::from(f.get(x, y)[c]);
-                        let mean = films.iter().map(value).sum::<f64>() / k as f64;
-                        let squares = films.iter().map(|f| (value(f) - mean).powi(2));
-                        squares.sum::<f64>() / (k - 1) as f64
-                    })
-                    .sum();
+                let var = [0, 1, 2].map(|c| {
+                    let value = |f: &Film| f64::from(f.get(x, y)[c]);
+                    let mean = films.iter().map(value).sum::<f64>() / k as f64;
+                    let squares = films.iter().map(|f| (value(f) - mean).powi(2));
+                    squares.sum::<f64>() / (k - 1) as f64
+                });
                 variances.push(var);
             }
         }
@@ -154,15 +155,70 @@ impl PixelNoise {
             return None;
         }
         let p = 1.0 / (a + 1.0);
-        let sum_var: f64 = self.variances.iter().sum();
+        let sum_var = self.total();
         if sum_var.is_nan() || sum_var <= 0.0 {
             return None;
         }
-        let sum_power: f64 = self.variances.iter().map(|v| v.powf(p)).sum();
+        let sum_power: f64 = self
+            .variances
+            .iter()
+            .map(|v| v.iter().sum::<f64>().powf(p))
+            .sum();
         let sum_power = sum_power / chi_moment((self.renders - 1) as f64, p);
         let n = self.variances.len() as f64;
         let share = (sum_power.ln() * (a + 1.0) - n.ln() * a - sum_var.ln()) / a;
         Some(share.exp().min(1.0))
+    }
+
+    /// Σσᵢ² over the pixels.
+    fn total(&self) -> f64 {
+        self.variances.iter().flatten().sum()
+    }
+
+    /// The share of uniform sampling's samples an adaptive render at `threshold` (at most `spp` a
+    /// pixel) would take for uniform sampling's MSE if its error estimate were exact: the
+    /// stopping rule itself ([`samples_with_known_errors`]), with pixel i's error after n samples
+    /// modelled from its measured noise, channel by channel, as √(σ²·(m/n)^a) (m the samples of
+    /// the renders the variances were measured from), over 10⁻⁴ + √(RGB sum) of its value in
+    /// `reference` (of `region`'s size and place), as the estimate scales it. Each σ̂ is divided
+    /// by its bias, c₄ of the renders. Both MSEs come from the same model, Σσᵢ²·(m/nᵢ)^a, so the
+    /// share is at least [`PixelNoise::allocation_bound`] at `a`: what separates the two is the
+    /// rule (its rounds, neighbourhood and relative threshold), and what separates this from a
+    /// real render's samples ratio is the estimate. `None` where the bound is.
+    pub fn known_noise_share(
+        &self,
+        reference: &Film,
+        region: Region,
+        measured: u32,
+        a: f64,
+        (spp, threshold): (u32, f32),
+    ) -> Option<f64> {
+        let total = self.total();
+        if a.is_nan() || a <= 0.0 || total.is_nan() || total <= 0.0 {
+            return None;
+        }
+        let width = region.width as usize;
+        let bias = chi_moment((self.renders - 1) as f64, 0.5);
+        let brightness: Vec<f64> = (0..self.variances.len())
+            .map(|i| {
+                let (x, y) = (region.x + (i % width) as u32, region.y + (i / width) as u32);
+                1e-4 + f64::from(reference.get(x, y).element_sum().max(0.0)).sqrt()
+            })
+            .collect();
+        let m = f64::from(measured);
+        let at = |n: u32| (m / f64::from(n)).powf(a);
+        let samples =
+            samples_with_known_errors((width, region.height as usize), spp, threshold, |i, n| {
+                let spread: f64 = self.variances[i].iter().map(|v| (v * at(n)).sqrt()).sum();
+                (spread / bias / brightness[i]) as f32
+            });
+        let mse: f64 = (self.variances.iter().zip(&samples))
+            .map(|(v, &n)| v.iter().sum::<f64>() * at(n))
+            .sum();
+        // Uniform sampling reaches that MSE at N samples: total·(m/N)^a = mse.
+        let uniform = m * (total / mse).powf(1.0 / a);
+        let mean = samples.iter().map(|&n| f64::from(n)).sum::<f64>() / samples.len() as f64;
+        Some(mean / uniform)
     }
 }
 
@@ -277,8 +333,8 @@ pub fn run_adaptive_study(
         .collect::<Result<Vec<Film>, RenderError>>()?;
     let noise = PixelNoise::measure(&films, region);
     let bound = noise.as_ref().and_then(|n| n.allocation_bound(1.0));
-    let bound_at_rate = convergence_exponent(&uniform)
-        .and_then(|a| Some((a, noise.as_ref()?.allocation_bound(a)?)));
+    let rate = convergence_exponent(&uniform);
+    let bound_at_rate = rate.and_then(|a| Some((a, noise.as_ref()?.allocation_bound(a)?)));
     progress(
         counts.len() + 1,
         total,
@@ -308,14 +364,21 @@ pub fn run_adaptive_study(
             flip: mean_flip(reference, &r.film, full),
             uniform_seconds: uniform_at(&uniform, mse_region, |r| r.seconds),
             uniform_samples: uniform_at(&uniform, mse_region, |r| f64::from(r.samples)),
+            known_noise_ratio: rate.and_then(|a| {
+                let plan = (options.max_samples, threshold);
+                noise
+                    .as_ref()?
+                    .known_noise_share(reference, region, variance_samples, a, plan)
+            }),
         };
         progress(
             counts.len() + 1 + i + 1,
             total,
             format!(
-                "adaptive T = {threshold} ({mean_samples:.1} spp)  {seconds:.4} s  MSE {mse_region:.3e}  ratio {}, samples {}",
+                "adaptive T = {threshold} ({mean_samples:.1} spp)  {seconds:.4} s  MSE {mse_region:.3e}  ratio {}, samples {} (known noise {})",
                 times(run.ratio()),
-                times(run.samples_ratio())
+                times(run.samples_ratio()),
+                times(run.known_noise_ratio)
             ),
         );
         adaptive.push(run);
@@ -346,18 +409,18 @@ fn uniform_at(uniform: &[Run], target: f64, cost: impl Fn(&Run) -> f64) -> Optio
 }
 
 /// The study as CSV: `render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,
-/// uniform_seconds,ratio,uniform_samples,samples_ratio`, uniform rows first (their threshold and
-/// last four columns empty), then the adaptive rows, then a `best_allocation` row whose
+/// uniform_seconds,ratio,uniform_samples,samples_ratio,known_noise_ratio`, uniform rows first
+/// (their threshold and last five columns empty), then the adaptive rows, then a `best_allocation` row whose
 /// `samples_ratio` (and, as before, `ratio`) is [`PixelNoise::allocation_bound`] at one-over-n convergence,
 /// and a `best_allocation_at_rate` row with the bound at the uniform runs' convergence.
 pub fn csv_text(study: &AdaptiveStudy) -> String {
     let mut s = String::from(
         "render,threshold,samples,mean_samples,seconds,mse,mse_region,flip,uniform_seconds,ratio,\
-         uniform_samples,samples_ratio\n",
+         uniform_samples,samples_ratio,known_noise_ratio\n",
     );
     for r in &study.uniform {
         s.push_str(&format!(
-            "uniform,,{},{},{:.6},{:.6e},{:.6e},{:.6},,,,\n",
+            "uniform,,{},{},{:.6},{:.6e},{:.6e},{:.6},,,,,\n",
             r.samples, r.samples, r.seconds, r.mse, r.mse_region, r.flip
         ));
     }
@@ -365,7 +428,7 @@ pub fn csv_text(study: &AdaptiveStudy) -> String {
     for r in &study.adaptive {
         let opt = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x:.6}"));
         s.push_str(&format!(
-            "adaptive,{},{cap},{:.3},{:.6},{:.6e},{:.6e},{:.6},{},{},{},{}\n",
+            "adaptive,{},{cap},{:.3},{:.6},{:.6e},{:.6e},{:.6},{},{},{},{},{}\n",
             r.threshold,
             r.mean_samples,
             r.seconds,
@@ -375,14 +438,17 @@ pub fn csv_text(study: &AdaptiveStudy) -> String {
             opt(r.uniform_seconds),
             opt(r.ratio()),
             opt(r.uniform_samples),
-            opt(r.samples_ratio())
+            opt(r.samples_ratio()),
+            opt(r.known_noise_ratio)
         ));
     }
     if let Some(b) = study.bound {
-        s.push_str(&format!("best_allocation,,,,,,,,,{b:.6},,{b:.6}\n"));
+        s.push_str(&format!("best_allocation,,,,,,,,,{b:.6},,{b:.6},\n"));
     }
     if let Some((_, b)) = study.bound_at_rate {
-        s.push_str(&format!("best_allocation_at_rate,,,,,,,,,{b:.6},,{b:.6}\n"));
+        s.push_str(&format!(
+            "best_allocation_at_rate,,,,,,,,,{b:.6},,{b:.6},\n"
+        ));
     }
     s
 }
@@ -527,6 +593,51 @@ mod tests {
         assert_eq!(allocation_bound(&films(&|_| 0.1), 0.0), None);
     }
 
+    /// The stopping rule with each pixel's noise known: equal noise gives every pixel the same
+    /// samples, uniform sampling's (a share of 1); noise in the top row of a 4×4 image keeps
+    /// that row and the next going (the 3×3 neighbourhood) while the rest stop at 8, so at the
+    /// cap of 256 the share is (8·256 + 8·8)/(16·256), twice the best allocation's ¼.
+    #[test]
+    fn known_noise_share_is_the_rule_s_own_allocation() {
+        let films = |amplitude: &dyn Fn(u32) -> f32| -> Vec<Film> {
+            (0..8)
+                .map(|i| {
+                    let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+                    let pixels = (0..16)
+                        .map(|p| Vec3::splat(1.0 + sign * amplitude(p)))
+                        .collect();
+                    Film::from_pixels(4, 4, pixels)
+                })
+                .collect()
+        };
+        let full = Region::full(4, 4);
+        let reference = Film::from_pixels(4, 4, vec![Vec3::ONE; 16]);
+        for a in [1.0, 1.34] {
+            let even = PixelNoise::measure(&films(&|_| 0.1), full).unwrap();
+            for threshold in [0.04, 0.01, 1e-6] {
+                let share = even.known_noise_share(&reference, full, 16, a, (256, threshold));
+                assert!(
+                    (share.unwrap() - 1.0).abs() < 1e-9,
+                    "{a} {threshold}: {share:?}"
+                );
+            }
+            let top = PixelNoise::measure(&films(&|p| if p < 4 { 0.1 } else { 0.0 }), full);
+            let top = top.unwrap();
+            let share = top.known_noise_share(&reference, full, 16, a, (256, 1e-6));
+            let share = share.unwrap();
+            assert!(
+                (share - (8.0 * 256.0 + 64.0) / (16.0 * 256.0)).abs() < 1e-9,
+                "{share}"
+            );
+            assert!(share > top.allocation_bound(a).unwrap());
+        }
+        let quiet = PixelNoise::measure(&films(&|_| 0.0), full).unwrap();
+        assert_eq!(
+            quiet.known_noise_share(&reference, full, 16, 1.0, (256, 0.01)),
+            None
+        );
+    }
+
     /// The convergence exponent is fitted from 16 samples up: a curve falling as 1/n² there is
     /// found to be a = 2 whatever its first runs do.
     #[test]
@@ -565,6 +676,7 @@ mod tests {
             flip: 0.0,
             uniform_seconds: Some(t),
             uniform_samples: Some(n),
+            known_noise_ratio: Some(0.55),
         };
         assert!((run.ratio().unwrap() - 0.8).abs() < 1e-9);
         assert!((run.samples_ratio().unwrap() - 0.6).abs() < 1e-9);
@@ -584,16 +696,16 @@ mod tests {
         let adaptive = csv.lines().nth(4).unwrap();
         assert!(adaptive.starts_with("adaptive,0.01,4,1.500,"), "{adaptive}");
         assert!(
-            adaptive.ends_with(",0.800000,2.500000,0.600000"),
+            adaptive.ends_with(",0.800000,2.500000,0.600000,0.550000"),
             "{adaptive}"
         );
         assert_eq!(
             csv.lines().nth(5),
-            Some("best_allocation,,,,,,,,,0.250000,,0.250000")
+            Some("best_allocation,,,,,,,,,0.250000,,0.250000,")
         );
         assert_eq!(
             csv.lines().last(),
-            Some("best_allocation_at_rate,,,,,,,,,0.300000,,0.300000")
+            Some("best_allocation_at_rate,,,,,,,,,0.300000,,0.300000,")
         );
     }
 }
