@@ -553,23 +553,25 @@ mod tests {
         assert!((ln_gamma(12.0) - 39_916_800f64.ln()).abs() < 1e-11);
     }
 
+    /// Eight 4×4 films whose pixel p is 1 ± `amplitude(p)`, the sign alternating from film to
+    /// film: each pixel's variance is amplitude²·8/7.
+    fn films(amplitude: &dyn Fn(u32) -> f32) -> Vec<Film> {
+        (0..8)
+            .map(|i| {
+                let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+                let pixels = (0..16)
+                    .map(|p| Vec3::splat(1.0 + sign * amplitude(p)))
+                    .collect();
+                Film::from_pixels(4, 4, pixels)
+            })
+            .collect()
+    }
+
     /// The allocation bound of films whose noise is known: equal noise everywhere gives 1, noise
     /// in a quarter of the pixels (none elsewhere) gives ¼ at any rate of convergence (every
     /// sample goes there), and unequal noise everywhere gains less the faster pixels converge.
     #[test]
     fn allocation_bound_follows_where_the_noise_is() {
-        // Pixel values ±a around 1 over k films with alternating signs: variance a²·k/(k−1).
-        let films = |amplitude: &dyn Fn(u32) -> f32| -> Vec<Film> {
-            (0..8)
-                .map(|i| {
-                    let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
-                    let pixels = (0..16)
-                        .map(|p| Vec3::splat(1.0 + sign * amplitude(p)))
-                        .collect();
-                    Film::from_pixels(4, 4, pixels)
-                })
-                .collect()
-        };
         let full = Region::full(4, 4);
         let allocation_bound = |films: &[Film], a: f64| {
             PixelNoise::measure(films, full).and_then(|n| n.allocation_bound(a))
@@ -599,17 +601,6 @@ mod tests {
     /// cap of 256 the share is (8·256 + 8·8)/(16·256), twice the best allocation's ¼.
     #[test]
     fn known_noise_share_is_the_rule_s_own_allocation() {
-        let films = |amplitude: &dyn Fn(u32) -> f32| -> Vec<Film> {
-            (0..8)
-                .map(|i| {
-                    let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
-                    let pixels = (0..16)
-                        .map(|p| Vec3::splat(1.0 + sign * amplitude(p)))
-                        .collect();
-                    Film::from_pixels(4, 4, pixels)
-                })
-                .collect()
-        };
         let full = Region::full(4, 4);
         let reference = Film::from_pixels(4, 4, vec![Vec3::ONE; 16]);
         for a in [1.0, 1.34] {
