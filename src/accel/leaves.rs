@@ -7,7 +7,7 @@
 //! A leaf is a span of entries `start..start + count` with `start` a multiple of four. The trees
 //! differ only in their nodes; how a leaf answers a query is here, once.
 
-use super::kernels::{Hits4, Ray4, Rows, Sphere4, Triangle4};
+use super::kernels::{triangle4, Hits4, Ray4, Rows, Sphere4, Triangle4};
 use crate::geometry::{Candidate, Primitives, Shape};
 use crate::math::next_float_up;
 use crate::ray::PreparedRay;
@@ -120,7 +120,7 @@ impl Block {
         const SPHERE: u32 = Kind::Sphere as u32;
         const OTHER: u32 = Kind::Other as u32;
         match self.entries[0] >> KIND_SHIFT {
-            TRIANGLE => Triangle4::from_rows(&self.shapes).intersect(r4, t_max),
+            TRIANGLE => triangle4::intersect_rows(&self.shapes, r4, t_max),
             SPHERE => Sphere4::from_rows(&self.shapes).intersect(r4, t_max),
             OTHER => Hits4 {
                 scalar: (0..4).fold(0, |m, l| m | ((self.entries[l] != PAD) as u32) << l),
