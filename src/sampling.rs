@@ -167,11 +167,14 @@ impl SampleKey {
                 let spp = self.spp.max(1);
                 stratum_point(stratum, spp, square_side(spp), u, key.rotate_left(16))
             }
-            Method::Sobol => sobol2(
-                self.sample,
-                (self.pixel_hash(&[dimension, 0x50b0]) >> 32) as u32,
-            ),
+            Method::Sobol => sobol2(self.sample, self.pattern_seed(dimension)),
         }
+    }
+
+    /// The scramble of the pixel's Sobol pattern for `dimension` ([`SampleKey::pixel_pattern`]).
+    #[inline]
+    fn pattern_seed(&self, dimension: u64) -> u32 {
+        (self.pixel_hash(&[dimension, 0x50b0]) >> 32) as u32
     }
 
     /// This camera sample's film and lens points (pixel anti-aliasing and depth of field),
@@ -195,8 +198,7 @@ impl SampleKey {
     pub fn camera_pattern(&self, method: Method) -> (Vec2, Vec2) {
         match method {
             Method::Sobol => {
-                let seed = (self.pixel_hash(&[0, 0x50b0]) >> 32) as u32;
-                let [fx, fy, lx, ly] = sobol4(self.sample, seed);
+                let [fx, fy, lx, ly] = sobol4(self.sample, self.pattern_seed(0));
                 (Vec2::new(fx, fy), Vec2::new(lx, ly))
             }
             Method::Random | Method::Jittered => {
