@@ -182,7 +182,7 @@ impl PixelState {
         }
         let variance = squares / (used - 1) as f32;
         let standard_error = (variance / n as f32).to_array().map(f32::sqrt);
-        let e = standard_error.iter().sum::<f32>() / (1e-4 + i.element_sum().max(0.0).sqrt());
+        let e = standard_error.iter().sum::<f32>() / brightness_scale(i);
         // NaN (a NaN sample) never converges, so it is not hidden by stopping early.
         if e.is_nan() {
             f32::INFINITY
@@ -190,6 +190,13 @@ impl PixelState {
             e
         }
     }
+}
+
+/// What a pixel's standard errors (summed over RGB) are divided by: 10⁻⁴ + √(RGB sum of its
+/// mean), the square root of its brightness as Cycles scales it (see the module docs).
+#[inline]
+pub fn brightness_scale(mean: Vec3) -> f32 {
+    1e-4 + mean.element_sum().max(0.0).sqrt()
 }
 
 /// What an adaptive render of a window traced.

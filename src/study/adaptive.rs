@@ -16,7 +16,7 @@ use super::{
 use crate::film::Film;
 use crate::integrator::Kind;
 use crate::metric::{mean_flip, mse, Region};
-use crate::render::adaptive::{samples_with_known_errors, Adaptive};
+use crate::render::adaptive::{brightness_scale, samples_with_known_errors, Adaptive};
 use crate::render::{render, RenderError, RenderOptions, RenderOutput};
 use crate::sampling::Method;
 use crate::scene::Scene;
@@ -202,7 +202,7 @@ impl PixelNoise {
         let brightness: Vec<f64> = (0..self.variances.len())
             .map(|i| {
                 let (x, y) = (region.x + (i % width) as u32, region.y + (i / width) as u32);
-                1e-4 + f64::from(reference.get(x, y).element_sum().max(0.0)).sqrt()
+                f64::from(brightness_scale(reference.get(x, y)))
             })
             .collect();
         let m = f64::from(measured);
