@@ -387,7 +387,8 @@ mod tests {
         assert_eq!(stop(0.05), 32);
         assert_eq!(stop(0.1), 128);
         assert_eq!(stop(1.0), 256); // never under: the cap
-                                    // A 5×4 image, flat but for one pixel: it and its 3×3 neighbourhood take what it needs.
+
+        // A 5×4 image, flat but for one pixel: it and its 3×3 neighbourhood take what it needs.
         let n = samples_with_known_errors((5, 4), 256, 0.01, |i, n| {
             if i == 7 {
                 0.1 / (n as f32).sqrt()
