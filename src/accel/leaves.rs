@@ -131,6 +131,13 @@ impl Block {
     }
 }
 
+/// The scalar test of primitive `p`, for the lanes a block's kernel leaves to it: out of line,
+/// so that the rarely taken test of every shape is not copied into each traversal loop.
+#[inline(never)]
+fn scalar_test(prims: &Primitives, p: u32, r: &PreparedRay, t_max: f32) -> Option<Candidate> {
+    prims.shape(p).intersect_prepared(r, t_max)
+}
+
 /// The set bits of `mask`, lowest first.
 #[inline(always)]
 pub(super) fn lanes(mut mask: u32) -> impl Iterator<Item = usize> {
@@ -300,7 +307,7 @@ impl Leaves {
                 let p = block.primitive(l);
                 let b = bound(p, best);
                 let c = if scalar & (1 << l) != 0 {
-                    prims.shape(p).intersect_prepared(r, b)
+                    scalar_test(prims, p, r, b)
                 } else {
                     (h.t[l] < b).then(|| Candidate {
                         t: h.t[l],
@@ -332,8 +339,7 @@ impl Leaves {
             let scalar = h.scalar;
             for l in lanes(h.hit | scalar) {
                 let p = block.primitive(l);
-                let hit =
-                    scalar & (1 << l) == 0 || prims.shape(p).intersect_prepared(r, t_max).is_some();
+                let hit = scalar & (1 << l) == 0 || scalar_test(prims, p, r, t_max).is_some();
                 if hit && blocks(p) {
                     return true;
                 }
