@@ -126,7 +126,6 @@ const GROUPS: usize = 4;
 /// One pixel's samples so far.
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct PixelState {
-    all: PixelSum,
     /// The sums of the four consecutive quarters of the pixel's samples, and how many each holds.
     groups: [PixelSum; GROUPS],
     group_counts: [u32; GROUPS],
@@ -157,11 +156,20 @@ impl PixelState {
             } else {
                 3
             };
-            self.all.add(c);
             self.groups[g].add(c);
             self.group_counts[g] += 1;
         }
         self.count = end;
+    }
+
+    /// The exact sum of all the pixel's samples: its groups' together (so a sample is added to
+    /// one sum, not two).
+    fn all(&self) -> PixelSum {
+        let mut all = self.groups[0];
+        for g in &self.groups[1..] {
+            all.merge(g);
+        }
+        all
     }
 
     /// The estimated standard error of the pixel's mean, relative to the square root of its
@@ -172,7 +180,7 @@ impl PixelState {
         if used < 2 {
             return f32::INFINITY;
         }
-        let i = self.all.mean(n);
+        let i = self.all().mean(n);
         let mut squares = Vec3::ZERO;
         for (sum, &c) in self.groups.iter().zip(&self.group_counts) {
             if c > 0 {
@@ -289,7 +297,7 @@ pub(super) fn trace(
         let row = (y - region.y0) as usize * rw;
         for x in w.x0..w.x1 {
             let p = &states[row + (x - region.x0) as usize];
-            sums.push(p.all);
+            sums.push(p.all());
             counts.push(p.count);
         }
     }
@@ -450,7 +458,7 @@ mod tests {
         assert_eq!(p.group_counts, [4, 4, 4, 4]);
         let means: Vec<f32> = (0..4).map(|j| p.groups[j].mean(4).x).collect();
         assert_eq!(means, [1.5, 5.5, 9.5, 13.5]);
-        assert_eq!(p.all.mean(16).x, 7.5);
+        assert_eq!(p.all().mean(16).x, 7.5);
         // A last round short of doubling (8 to 12): its halves are smaller than the groups
         // before it.
         let p = state(&samples[..12]);
