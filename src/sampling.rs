@@ -157,17 +157,22 @@ impl SampleKey {
     /// per-pixel shuffle of the strata; Sobol patterns only by their scrambles, which leaves them
     /// paired within a pixel: [`SampleKey::camera_pattern`] gives the film and lens points.
     pub fn pixel_pattern(&self, method: Method, dimension: u64) -> Vec2 {
-        let h = self.pixel_hash(&[dimension, self.sample as u64]);
-        let u = Vec2::new(to_unit(h), to_unit(mix64(h)));
         match method {
-            Method::Random => u,
+            Method::Random => self.pattern_jitter(dimension),
             Method::Jittered => {
                 let (stratum, key) = self.jittered_stratum(dimension);
-                let spp = self.spp.max(1);
-                stratum_point(stratum, spp, square_side(spp), u, key.rotate_left(16))
+                self.jittered_point(dimension, stratum, key)
             }
             Method::Sobol => sobol2(self.sample, self.pattern_seed(dimension)),
         }
+    }
+
+    /// This camera sample's uniform point for the pixel pattern of `dimension`: the whole point
+    /// of a random pattern, the offset inside its stratum of a jittered one.
+    #[inline]
+    fn pattern_jitter(&self, dimension: u64) -> Vec2 {
+        let h = self.pixel_hash(&[dimension, self.sample as u64]);
+        Vec2::new(to_unit(h), to_unit(mix64(h)))
     }
 
     /// The stratum of this camera sample in the pixel's jittered pattern for `dimension`, and
@@ -176,6 +181,15 @@ impl SampleKey {
     fn jittered_stratum(&self, dimension: u64) -> (u32, u32) {
         let key = (self.pixel_hash(&[dimension]) & 0xffff_ffff) as u32;
         (permute(self.sample, self.spp, key), key)
+    }
+
+    /// This camera sample's point in `stratum` of the pixel's jittered pattern for `dimension`;
+    /// `key` shuffles the columns of a count that is not a square.
+    #[inline]
+    fn jittered_point(&self, dimension: u64, stratum: u32, key: u32) -> Vec2 {
+        let spp = self.spp.max(1);
+        let u = self.pattern_jitter(dimension);
+        stratum_point(stratum, spp, square_side(spp), u, key.rotate_left(16))
     }
 
     /// The scramble of the pixel's Sobol pattern for `dimension` ([`SampleKey::pixel_pattern`]).
@@ -189,7 +203,7 @@ impl SampleKey {
     /// Sobol points come from one four-dimensional point, the film from its dimensions 0 and 1
     /// (dimension 0's pattern, bit for bit) and the lens from 2 and 3, and that jittered lens
     /// cells are paired with the film cells by an orthogonal array where one is built (see
-    /// `lens_cell` in this module: 1.15–1.8× lower MSE on `scenes/thinlens.json` from 9 to 256
+    /// `lens_stratum` in this module: 1.15–1.8× lower MSE on `scenes/thinlens.json` from 9 to 256
     /// samples a pixel).
     ///
     /// Two 2D Sobol patterns under scrambles of their own are each stratified, but their points
@@ -212,14 +226,11 @@ impl SampleKey {
                 (Vec2::new(fx, fy), Vec2::new(lx, ly))
             }
             Method::Jittered => {
-                let film = self.pixel_pattern(method, 0);
-                let lens = match lens_cell(self) {
-                    Some(cell) => {
-                        let k = square_side(self.spp) as f32;
-                        let h = self.pixel_hash(&[1, self.sample as u64]);
-                        let jitter = Vec2::new(to_unit(h), to_unit(mix64(h)));
-                        (cell + jitter) / k
-                    }
+                let (stratum, key) = self.jittered_stratum(0);
+                let film = self.jittered_point(0, stratum, key);
+                let lens = match lens_stratum(self, stratum) {
+                    // A square count: its grid has no column shuffle.
+                    Some(lens) => self.jittered_point(1, lens, 0),
                     None => self.pixel_pattern(method, 1),
                 };
                 (film, lens)
@@ -611,8 +622,8 @@ fn sobol_set0(index: u32, seed: u32) -> [f32; 4] {
         .to_f32_norm()
 }
 
-/// The lens cell, on the `k×k` grid of a pixel of `k²` jittered samples, of this camera
-/// sample: its film cell `(i, j)` and the lens cell are one run of a strength-2
+/// The lens stratum, on the `k×k` grid of a pixel of `k²` jittered samples, of the camera
+/// sample `key` whose film stratum is `film`: the film cell `(i, j)` and the lens cell are one run of a strength-2
 /// orthogonal array of four factors (Bose's construction; Jarosz et al., "Orthogonal Array
 /// Sampling for Monte Carlo Rendering", EGSR 2019), `(i + j, i + 2j)` over the integers mod `k`
 /// for odd `k` and `(i ⊕ j, i ⊕ x·j)` over polynomials mod `x^m + x + 1` for `k = 2^m ≥ 4`.
@@ -624,12 +635,11 @@ fn sobol_set0(index: u32, seed: u32) -> [f32; 4] {
 /// `x^m + x + 1`, for `k = 2^m`). `None` where no such array is built here: a count that is
 /// not a square, `k = 2`, or `k` twice an odd number (the lens then pairs with the film at
 /// random, as it did).
-fn lens_cell(key: &SampleKey) -> Option<Vec2> {
+fn lens_stratum(key: &SampleKey, film: u32) -> Option<u32> {
     let k = square_side(key.spp);
     if k < 3 {
         return None;
     }
-    let film = key.jittered_stratum(0).0;
     let (i, j) = (film % k, film / k);
     let (a, b) = if k % 2 == 1 {
         ((i + j) % k, (i + 2 * j) % k)
@@ -644,10 +654,8 @@ fn lens_cell(key: &SampleKey) -> Option<Vec2> {
         return None;
     };
     let shuffle = (key.pixel_hash(&[1, 0x0a]) & 0xffff_ffff) as u32;
-    Some(Vec2::new(
-        permute(a, k, shuffle) as f32,
-        permute(b, k, shuffle.rotate_left(16)) as f32,
-    ))
+    // Stratum `x + k·y`, as `stratum_point` lays out a square grid.
+    Some(permute(a, k, shuffle) + k * permute(b, k, shuffle.rotate_left(16)))
 }
 
 /// The side `k` of the `k×k` grid of strata when `count` is a perfect square, else 0.
