@@ -7,7 +7,7 @@ median of --runs) and scored by the MSE of its linear EXR against the reference.
 runs give time as a function of MSE (interpolated in log-log); each adaptive run's time is
 divided by the uniform time at its MSE: the equal-error time ratio (below 1: adaptive wins).
 
-  python3 benches/adaptive.py [--runs 1] [--max-spp 256] [--scenes penumbra,thinlens]
+  python3 benches/adaptive.py [--runs 1] [--max-spp 256] [--scenes penumbra,thinlens,arealight]
                               [--bin target/release/raytracer] [--also BIN2,BIN3]
 """
 import argparse
@@ -23,6 +23,8 @@ SCENES = [
     # (name, scene file, extra flags, reference spp)
     ("penumbra (area light)", "scenes/penumbra.json", [], 4096),
     ("thinlens (depth of field)", "scenes/thinlens.json", ["--width", "160"], 4096),
+    ("arealight_jittered (area light)", "scenes/arealight_jittered.json", ["--width", "160"],
+     4096),
 ]
 THRESHOLDS = [0.04, 0.02, 0.01, 0.005]
 
