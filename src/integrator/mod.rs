@@ -138,7 +138,10 @@ impl<'a> Integrator<'a> {
     }
 }
 
-/// Traces camera rays for one worker, with the render's integrator.
+/// Traces camera rays for one worker, with the render's integrator. One is made per worker and
+/// tile, so the variants' difference in size costs nothing, where boxing the larger one would
+/// add a pointer to follow at every camera sample.
+#[allow(clippy::large_enum_variant)]
 pub enum Tracer<'a> {
     Whitted(Whitted<'a>),
     Path(path::PathTracer<'a>),

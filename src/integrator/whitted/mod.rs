@@ -259,21 +259,28 @@ impl Passage {
     }
 }
 
-/// A shading point whose reflection and refraction rays are not all traced yet.
+/// A shading point whose reflection and refraction rays are not all traced yet. Its untraced
+/// rays wait on [`Whitted::pending`], the next one on top.
 #[derive(Debug, Clone, Copy)]
 struct Open {
     /// Direct light plus the scaled radiance of the branches finished so far.
     color: Vec3,
     /// Factor of this point's radiance in its parent's.
     factor: f32,
-    /// Refracted then reflected ray, in the order they are traced; taken when started.
-    branches: [Option<Branch>; 2],
+    /// Its rays still on [`Whitted::pending`].
+    pending: u32,
 }
 
-impl Open {
-    fn next_branch(&mut self) -> Option<Branch> {
-        self.branches.iter_mut().find_map(Option::take)
+/// Pushes a shading point's rays (refracted, then reflected) so that they are taken in that
+/// order, and returns how many there are.
+#[inline]
+fn push_branches(pending: &mut Vec<Branch>, branches: &[Option<Branch>; 2]) -> u32 {
+    let mut count = 0;
+    for b in branches.iter().rev().flatten() {
+        pending.push(*b);
+        count += 1;
     }
+    count
 }
 
 /// Traces Whitted ray trees through one scene. Cheap to create; one per worker.
@@ -297,6 +304,9 @@ pub struct Whitted<'a> {
     budget: u32,
     /// The open shading points of the current camera sample, kept to reuse its memory.
     open: Vec<Open>,
+    /// Their untraced rays: the top point's next ray on top (a refracted ray above the reflected
+    /// ray of the same point), kept to reuse its memory.
+    pending: Vec<Branch>,
     /// Per light, the box its samples lie in (for [`Beam`]s); `None` for point lights.
     light_bounds: Vec<Option<Aabb>>,
     /// Per light, the light buffer its beams' candidates come from, where it has one
@@ -343,6 +353,7 @@ impl<'a> Whitted<'a> {
             cancel: None,
             budget: MAX_SECONDARY_RAYS_PER_SAMPLE,
             open: Vec::new(),
+            pending: Vec::new(),
             light_bounds: scene.lights.iter().map(Light::bounds).collect(),
             light_buffers: &[],
             candidates: Vec::new(),
@@ -384,24 +395,30 @@ impl<'a> Whitted<'a> {
             return color;
         }
         let mut open = std::mem::take(&mut self.open);
+        let mut pending = std::mem::take(&mut self.pending);
         open.clear();
+        pending.clear();
         open.push(Open {
             color,
             factor: 1.0,
-            branches,
+            pending: push_branches(&mut pending, &branches),
         });
         let result = loop {
             let Some(top) = open.last_mut() else {
                 break Vec3::ZERO; // not reached: the camera ray's point is popped last
             };
-            let Some(branch) = top.next_branch() else {
-                let done = *top;
+            if top.pending == 0 {
+                let (color, factor) = (top.color, top.factor);
                 open.pop();
                 match open.last_mut() {
-                    Some(parent) => parent.color += done.factor * done.color,
-                    None => break done.color,
+                    Some(parent) => parent.color += factor * color,
+                    None => break color,
                 }
                 continue;
+            }
+            top.pending -= 1;
+            let Some(branch) = pending.pop() else {
+                break Vec3::ZERO; // not reached: every open point's rays are on the stack
             };
             if self.budget == 0 {
                 top.color += branch.factor * Vec3::ZERO;
@@ -427,11 +444,12 @@ impl<'a> Whitted<'a> {
                 open.push(Open {
                     color,
                     factor: branch.factor,
-                    branches,
+                    pending: push_branches(&mut pending, &branches),
                 });
             }
         };
         self.open = open;
+        self.pending = pending;
         result
     }
 
