@@ -360,12 +360,11 @@ mod tests {
             3.5e-7,
             -1234.567,
         ];
-        let mut rng = 0x9e37_79b9u32;
+        // Any bit pattern: the generator's state, stepped.
+        let mut rng = crate::accel::kernels::twin::Rng(0x9e37_79b9_7f4a_7c15);
         for _ in 0..200 {
-            rng ^= rng << 13;
-            rng ^= rng >> 17;
-            rng ^= rng << 5;
-            values.push(f32::from_bits(rng));
+            rng.next();
+            values.push(f32::from_bits((rng.0 >> 32) as u32));
         }
         let offsets = [
             0.0f32,
