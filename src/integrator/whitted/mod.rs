@@ -1042,6 +1042,62 @@ mod tests {
         (pixels, w.counts.shadow)
     }
 
+    /// The radiance along `ray` by plain recursion over [`Whitted::shade`]: each point's
+    /// refracted ray's subtree, then its reflected ray's, each scaled into the point's colour as
+    /// it finishes, with the sample's budget of secondary rays spent in that order.
+    fn recursive(
+        w: &mut Whitted,
+        ray: &Ray,
+        depth: u32,
+        key: &SampleKey,
+        weight: f32,
+        inside: Option<Inside>,
+    ) -> Vec3 {
+        let mut branches = [None, None];
+        let mut color = w.shade(ray, depth, key, weight, inside, &mut branches);
+        for b in branches.into_iter().flatten() {
+            if w.budget == 0 {
+                color += b.factor * Vec3::ZERO;
+                continue;
+            }
+            w.budget -= 1;
+            color += b.factor * recursive(w, &b.ray, b.depth, &b.key, b.weight, b.inside);
+        }
+        color
+    }
+
+    /// The explicit stack walks the ray tree as the recursion does: every pixel of a scene of
+    /// glass and mirror spheres, eight bounces deep, the same bits, with and without the cut-off.
+    #[test]
+    fn the_walk_sums_as_the_recursion_does() {
+        let scene = load_str(SCENE, Path::new("walk.json"), &LoadOptions::default()).unwrap();
+        let accel = Accel::build(&scene.primitives, AccelKind::Sah4, 4);
+        let interiors = interiors(&scene, &accel);
+        for cutoff in [None, Some(DEFAULT_CUTOFF)] {
+            let options = TraceOptions {
+                cutoff,
+                ..Default::default()
+            };
+            let mut w = Whitted::new(&scene, &accel, &interiors, 8, options, Method::Jittered);
+            let mut deepest = 0;
+            for_each_pixel_centre(&scene, |x, y, key, ray| {
+                let walked = w.trace_camera(ray, key);
+                w.budget = MAX_SECONDARY_RAYS_PER_SAMPLE;
+                let reference =
+                    crate::integrator::finite_radiance(recursive(&mut w, ray, 0, key, 1.0, None));
+                deepest = deepest.max(MAX_SECONDARY_RAYS_PER_SAMPLE - w.budget);
+                let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+                assert_eq!(
+                    bits(walked),
+                    bits(reference),
+                    "pixel ({x}, {y}), {cutoff:?}"
+                );
+            });
+            // Trees of several levels, so that the order of the sums is tested.
+            assert!(deepest >= 4, "at most {deepest} secondary rays a pixel");
+        }
+    }
+
     /// Calls `f` with each pixel `(x, y)` of `scene`, row by row, its sample key (seed 7) and
     /// the camera ray through its centre.
     pub(super) fn for_each_pixel_centre(
