@@ -213,6 +213,42 @@ struct Branch {
     inside: Option<Inside>,
 }
 
+/// What the reflection and refraction rays of one shading point share.
+struct Leaving<'s> {
+    spawn: &'s SpawnPoints,
+    /// The sphere of the hit, where [`Interiors`] knows it.
+    sphere: Option<Inside>,
+    /// Depth of the shading points the rays lead to.
+    depth: u32,
+    key: &'s SampleKey,
+    /// Whether some shading point draws samples ([`Whitted::draws`]).
+    draws: bool,
+    /// The weight of the ray that reached the point.
+    weight: f32,
+}
+
+impl Leaving<'_> {
+    /// The ray in direction `dir`, scaled by `factor` in the point's radiance. Its sample key is
+    /// stream `0x1000 + id` of the point's; where nothing draws a sample the keys are never read,
+    /// and the point's stands in. (A method rather than a closure: called from two places, a
+    /// closure was left out of line, a call per ray.)
+    #[inline(always)]
+    fn branch(&self, dir: Vec3, id: u64, factor: f32) -> Branch {
+        Branch {
+            ray: self.spawn.ray(dir),
+            inside: self.sphere.filter(|_| self.spawn.side(dir) == Side::Below),
+            depth: self.depth,
+            key: if self.draws {
+                self.key.stream(0x1000 + id)
+            } else {
+                *self.key
+            },
+            weight: self.weight * factor,
+            factor,
+        }
+    }
+}
+
 /// What a shadow ray's any-hit query notes of the surfaces it hits, in a scene with transmissive
 /// ones: how many it passes (its own light's and transmissive ones), whether any is
 /// transmissive, and whether every one of those lets everything through (`kt = 1`).
@@ -546,18 +582,13 @@ impl<'a> Whitted<'a> {
         }
         // A ray leaving below a sphere's surface starts inside it.
         let sphere = self.interiors.of(prim);
-        let branch = |dir: Vec3, id: u64, factor: f32| Branch {
-            ray: spawn.ray(dir),
-            inside: sphere.filter(|_| spawn.side(dir) == Side::Below),
+        let leaving = Leaving {
+            spawn: &spawn,
+            sphere,
             depth: depth + 1,
-            // Where nothing draws a sample the keys are never read: the parent's stands in.
-            key: if self.draws {
-                key.stream(0x1000 + id)
-            } else {
-                *key
-            },
-            weight: weight * factor,
-            factor,
+            key,
+            draws: self.draws,
+            weight,
         };
         let mut reflect_weight = material.kr;
         if material.kt > 0.0 {
@@ -572,7 +603,7 @@ impl<'a> Whitted<'a> {
             let transmit = material.kt * (1.0 - f);
             if transmit > 0.0 && self.worth_tracing(weight * transmit) {
                 if let Some(t) = refract(ray.dir, n, eta) {
-                    branches[0] = Some(branch(t, 2, transmit));
+                    branches[0] = Some(leaving.branch(t, 2, transmit));
                 }
             }
         }
@@ -589,7 +620,7 @@ impl<'a> Whitted<'a> {
                     r = blurred; // else the mirror direction, rather than into the surface
                 }
             }
-            branches[1] = Some(branch(r, 1, reflect_weight));
+            branches[1] = Some(leaving.branch(r, 1, reflect_weight));
         }
         color
     }
