@@ -846,7 +846,6 @@ impl<'a> Whitted<'a> {
         only: Option<[&Reachable; 2]>,
     ) -> f32 {
         let scene = self.scene;
-        let prims = &scene.primitives;
         self.counts.shadow += 1;
         let side = from.side_to(target);
         let only = only.map(|lists| lists[side as usize]);
@@ -855,22 +854,36 @@ impl<'a> Whitted<'a> {
         }
         let (ray, dist) = from.ray_from(side, target);
         let t_max = dist * (1.0 - LIGHT_CLEARANCE);
-        let any = |blocks: &mut dyn FnMut(u32) -> bool| match only {
-            Some(candidates) => candidates.any(&ray, t_max, blocks),
-            None => self.accel.any(prims, &ray, t_max, blocks),
-        };
         if !scene.has_transmissive {
-            let blocked = any(&mut |p| !surface.contains(&p));
+            let blocked = self.any_hit(only, &ray, t_max, |p| !surface.contains(&p));
             return if blocked { 0.0 } else { 1.0 };
         }
         let mut passage = Passage::default();
-        if any(&mut |p| passage.blocked_by(scene, surface, p)) {
+        if self.any_hit(only, &ray, t_max, |p| passage.blocked_by(scene, surface, p)) {
             return 0.0;
         }
         if passage.settled() {
             return 1.0;
         }
         self.walk_crossings(from, target, surface)
+    }
+
+    /// Whether `ray` hits a primitive for which `blocks` holds before `t_max`: among `only`
+    /// where given (see [`Whitted::transmittance`]), else through the accelerator. Generic over
+    /// `blocks`, so that each caller's test is inlined into the query, not called through a
+    /// pointer at every primitive hit.
+    #[inline(always)]
+    fn any_hit(
+        &self,
+        only: Option<&Reachable>,
+        ray: &Ray,
+        t_max: f32,
+        blocks: impl FnMut(u32) -> bool,
+    ) -> bool {
+        match only {
+            Some(candidates) => candidates.any(ray, t_max, blocks),
+            None => self.accel.any(&self.scene.primitives, ray, t_max, blocks),
+        }
     }
 
     /// The transmittance towards `target` one closest hit at a time: the product of the `kt`
