@@ -6,7 +6,7 @@
 //! empty scenes, single primitives, degenerate triangles and duplicated primitives (where the
 //! lower primitive index wins a tie in `t`), and with infinite planes, which no tree holds.
 
-use raytracer::accel::{Accel, AccelKind, Bvh, Bvh4, Reachable};
+use raytracer::accel::{Accel, AccelKind, Bvh, Bvh4, Isa, Reachable};
 use raytracer::geometry::{
     Candidate, Cylinder, Mesh, MeshUv, Plane, Primitive, Primitives, Shape, Sphere, Triangle,
 };
@@ -290,6 +290,17 @@ fn accelerators(prims: &Primitives) -> Vec<(String, Accel)> {
         ),
         ("sah".to_string(), Accel::build(prims, AccelKind::Sah, 4)),
         ("sah4".to_string(), Accel::build(prims, AccelKind::Sah4, 4)),
+        ("sah8".to_string(), Accel::build(prims, AccelKind::Sah8, 4)),
+        // Each wide tree with the other instruction set from the one it is built with: the
+        // baseline and, where the CPU has it, AVX2 (`accel::kernels::isa`).
+        (
+            "sah4 avx2".to_string(),
+            Accel::build(prims, AccelKind::Sah4, 4).with_isa(Isa::detect()),
+        ),
+        (
+            "sah8 baseline".to_string(),
+            Accel::build(prims, AccelKind::Sah8, 4).with_isa(Isa::BASELINE),
+        ),
     ];
     for leaf in [1, 2, 8] {
         v.push((

@@ -5,6 +5,8 @@ mod common;
 
 use std::process::Command;
 
+use raytracer::accel::Isa;
+
 use common::repo;
 
 const ACCELS: [&str; 7] = ["auto", "none", "flat", "median", "sah", "sah4", "sah8"];
@@ -80,27 +82,33 @@ fn quick_ray_throughput_reports_every_set() {
         .expect("run raytracer bench --rays");
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{stdout}");
-    // Every tree traces the same rays: the same number of hits in each set.
+    // Every tree traces the same rays: the same number of hits in each set, whatever the
+    // instructions its queries run with.
     for set in ["primary", "shadow", "incoherent", "render"] {
-        let fields = |accel: &str| -> Vec<String> {
-            let line = stdout
-                .lines()
-                .find(|l| {
-                    let f: Vec<&str> = l.split_whitespace().collect();
-                    f.first() == Some(&"G2S8") && f.get(2) == Some(&accel) && f.contains(&set)
-                })
-                .unwrap_or_else(|| panic!("{set} with {accel} missing:\n{stdout}"));
-            line.split_whitespace().map(str::to_string).collect()
+        let rows: Vec<Vec<&str>> = stdout
+            .lines()
+            .map(|l| l.split_whitespace().collect::<Vec<_>>())
+            .filter(|f| f.first() == Some(&"G2S8") && f.contains(&set))
+            .collect();
+        let row = |accel: &str, simd: &str| {
+            rows.iter()
+                .find(|f| f.get(2) == Some(&accel) && f.get(3) == Some(&simd))
+                .unwrap_or_else(|| panic!("{set} with {accel} ({simd}) missing:\n{stdout}"))
         };
-        let sah = fields("sah");
-        // grid tris accel build_ms median_build_ms bytes_per_tri set rays hits … (the render
-        // row has no hits)
-        let counts = if set == "render" { 7..8 } else { 7..9 };
-        for wide in ["sah4", "sah8"] {
+        // grid tris accel simd build_ms median_build_ms bytes_per_tri set rays hits … (the
+        // render row has no hits)
+        let counts = if set == "render" { 8..9 } else { 8..10 };
+        let sah = row("sah", "baseline");
+        let mut trees = vec![row("sah4", "baseline"), row("sah8", Isa::detect().name())];
+        if Isa::detect() != Isa::BASELINE {
+            trees.push(row("sah8", "baseline"));
+        }
+        assert_eq!(rows.len(), 1 + trees.len(), "{set}:\n{stdout}");
+        for wide in trees {
             assert_eq!(
                 sah[counts.clone()],
-                fields(wide)[counts.clone()],
-                "{set}: ray or hit counts differ with {wide}"
+                wide[counts.clone()],
+                "{set}: ray or hit counts differ with {wide:?}"
             );
         }
     }

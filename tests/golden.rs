@@ -9,9 +9,7 @@
 
 mod common;
 
-use std::path::PathBuf;
-
-use common::repo;
+use common::{bundled_scenes, repo};
 use raytracer::film::{to_rgb8, Film, ToneMap};
 use raytracer::integrator::TraceOptions;
 use raytracer::math::Vec3;
@@ -26,16 +24,6 @@ const MAX_MSE: f64 = 1e-6;
 const MAX_FLIP: f64 = 1e-3;
 const WIDTH: u32 = 96;
 const SPP: u32 = 4;
-
-fn scenes() -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = std::fs::read_dir(repo().join("scenes"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "json"))
-        .collect();
-    v.sort();
-    v
-}
 
 fn load_small(path: &std::path::Path) -> Scene {
     let options = LoadOptions {
@@ -83,7 +71,7 @@ fn renders_match_their_golden_images() {
     let update = std::env::var("RAYTRACER_UPDATE_GOLDEN").is_ok_and(|v| v == "1");
     let out_dir = repo().join("target/golden-failures");
     let mut failures = Vec::new();
-    for path in scenes() {
+    for path in bundled_scenes() {
         let name = path.file_stem().unwrap().to_string_lossy().into_owned();
         let golden_path = repo().join("tests/golden").join(format!("{name}.png"));
         let scene = load_small(&path);
@@ -133,7 +121,7 @@ fn renders_match_their_golden_images() {
 /// byte of the image as it was — e.g. brightening pure red — is not a change).
 #[test]
 fn tolerances_catch_shifts_flips_and_brightness_changes() {
-    for path in scenes() {
+    for path in bundled_scenes() {
         let name = path.file_stem().unwrap().to_string_lossy().into_owned();
         let scene = load_small(&path);
         let raw = render(
@@ -191,7 +179,7 @@ fn tolerances_catch_shifts_flips_and_brightness_changes() {
 /// The same scene gives the same pixels on one thread and on all threads, and twice in a row.
 #[test]
 fn golden_scenes_render_identically_on_any_thread_count() {
-    for path in scenes().into_iter().take(6) {
+    for path in bundled_scenes().into_iter().take(6) {
         let scene = load_small(&path);
         let on = |threads| {
             rayon::ThreadPoolBuilder::new()
@@ -240,7 +228,7 @@ fn the_default_cutoff_keeps_every_bundled_scene_within_its_bound() {
     };
     let (mut rays_full, mut rays_skip) = (0u64, 0u64);
     let mut worst_without_secondary = 0.0f64;
-    for path in scenes() {
+    for path in bundled_scenes() {
         let scene = load_small(&path);
         let (full, n_full) = with_cutoff(&scene, None);
         let (skip, n_skip) = with_cutoff(&scene, Some(raytracer::integrator::DEFAULT_CUTOFF));

@@ -211,6 +211,41 @@ fn renders_are_identical_on_any_thread_count() {
     assert!(one.pixels != other_seed.pixels);
 }
 
+/// The eight-wide tree's queries take AVX2 where the CPU has it and the baseline's SSE where
+/// not: every bundled scene renders to the same pixels either way (40 pixels wide).
+#[test]
+fn renders_are_identical_whichever_instructions_the_queries_take() {
+    use raytracer::accel::{Accel, AccelKind, Isa};
+    use raytracer::render::render_with_accel;
+    use raytracer::scene::{load, LoadOptions};
+
+    let scenes = bundled_scenes();
+    for path in &scenes {
+        let small = LoadOptions {
+            width: Some(40),
+            ..LoadOptions::default()
+        };
+        let scene = load(path, &small).unwrap_or_else(|e| panic!("{e}"));
+        let options = RenderOptions {
+            spp: 2,
+            ..RenderOptions::default()
+        };
+        let tree = Accel::build(&scene.primitives, AccelKind::Sah8, 4);
+        let films = [Isa::BASELINE, Isa::detect()].map(|isa| {
+            let accel = tree.clone().with_isa(isa);
+            render_with_accel(&scene, &accel, &options).unwrap().film
+        });
+        let bits = |f: &raytracer::film::Film| {
+            f.pixels
+                .iter()
+                .flat_map(|p| p.to_array().map(f32::to_bits))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&films[0]), bits(&films[1]), "{}", path.display());
+    }
+    assert!(scenes.len() >= 15, "{} scenes", scenes.len());
+}
+
 /// Area-light shadows are soft: the penumbra has values strictly between the umbra and full light,
 /// and the random and jittered estimators agree on average.
 #[test]

@@ -316,11 +316,7 @@ fn bad_values_are_errors_with_paths() {
 #[test]
 fn bundled_scenes_load_cleanly() {
     let mut n = 0;
-    for entry in std::fs::read_dir(repo().join("scenes")).unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().is_none_or(|e| e != "json") {
-            continue;
-        }
+    for path in bundled_scenes() {
         let options = LoadOptions {
             width: Some(32),
             ..Default::default()

@@ -118,7 +118,9 @@ def main():
     ours = {}
     with open(ours_csv) as f:
         for row in csv.DictReader(f):
-            ours.setdefault(row["grid"], {}).setdefault(row["accel"], {})[row["set"]] = row
+            # A tree appears once per instruction set its queries were measured with.
+            tree = "%s (%s)" % (row["accel"], row.get("simd", "baseline"))
+            ours.setdefault(row["grid"], {}).setdefault(tree, {})[row["set"]] = row
 
     print("Embree 4 (embreex %s) and raytracer, one thread each on CPU %d, medians of %d runs\n"
           % (embreex_version(), cpu, args.runs))
@@ -137,9 +139,13 @@ def main():
                 print("| %s | %d | %s | %.2f | %s | %.2f | %.2f× | %s / %d |"
                       % (grid, e["triangles"], name, theirs, accel, mine, mine / theirs,
                          r["hits"], e[name]["hits"]))
-        for accel, rows in trees.items():
+        built = set()
+        for rows in trees.values():
             first = next(iter(rows.values()))
-            builds.append((grid, accel, float(first["build_ms"]), e["build_s"] * 1e3,
+            if first["accel"] in built:
+                continue  # the same build, measured again with other instructions
+            built.add(first["accel"])
+            builds.append((grid, first["accel"], float(first["build_ms"]), e["build_s"] * 1e3,
                            float(first["bytes_per_tri"])))
         sys.stdout.flush()
     print("\n| grid | raytracer tree | build ms | Embree build ms | ours / Embree | raytracer bytes per triangle |")

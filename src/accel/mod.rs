@@ -28,6 +28,7 @@ pub mod wide;
 pub use beam::Beam;
 pub use bvh::{Bvh, BvhOptions, BvhStats, Split};
 pub use interior::{Inside, Interiors};
+pub use kernels::Isa;
 pub use light_buffer::LightBuffer;
 pub use reachable::Reachable;
 pub use wide::{Bvh4, Bvh8};
@@ -146,6 +147,26 @@ impl Accel {
             AccelKind::Sah => Accel::Bvh(Bvh::build_sah(prims, leaf_size)),
             AccelKind::Auto | AccelKind::Sah4 => Accel::Bvh4(Bvh4::build(prims, leaf_size)),
             AccelKind::Sah8 => Accel::Bvh8(Bvh8::build(prims, leaf_size)),
+        }
+    }
+
+    /// The accelerator with queries that run with `isa` (a wide tree's; the others run with the
+    /// baseline whatever `isa` says). The answers are the same bits for every `isa`
+    /// ([`kernels::isa`]).
+    pub fn with_isa(self, isa: Isa) -> Accel {
+        match self {
+            Accel::Bvh4(b) => Accel::Bvh4(b.with_isa(isa)),
+            Accel::Bvh8(b) => Accel::Bvh8(b.with_isa(isa)),
+            other => other,
+        }
+    }
+
+    /// What the queries run with.
+    pub fn isa(&self) -> Isa {
+        match self {
+            Accel::Bvh4(b) => b.isa(),
+            Accel::Bvh8(b) => b.isa(),
+            Accel::List | Accel::Bvh(_) => Isa::BASELINE,
         }
     }
 

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 
 pub mod kinds;
 
-use crate::accel::{Accel, AccelKind};
+use crate::accel::{Accel, AccelKind, Isa};
 use crate::camera::{Camera, Handedness};
 use crate::files::shown;
 use crate::geometry::{Mesh, MeshUv, Primitive, Primitives, Shape, Sphere, Triangle};
@@ -777,6 +777,8 @@ impl SetResult {
 #[derive(Debug, Clone)]
 pub struct TreeThroughput {
     pub kind: AccelKind,
+    /// What its queries ran with.
+    pub isa: Isa,
     pub build: Duration,
     pub accel_bytes: usize,
     /// Of `accel_bytes`, the leaves' blocks.
@@ -809,7 +811,8 @@ pub struct Throughput {
 pub const THROUGHPUT_TREES: [AccelKind; 3] = [AccelKind::Sah, AccelKind::Sah4, AccelKind::Sah8];
 
 /// Runs the throughput benchmark on the `g×g`, `s×s` grid: for each tree of
-/// [`THROUGHPUT_TREES`], its build (median of `runs`, or one build if `runs` is 0), each ray set
+/// [`THROUGHPUT_TREES`] (and once more with the baseline's instructions, for a tree whose queries
+/// use more: [`Isa`]), its build (median of `runs`, or one build if `runs` is 0), each ray set
 /// on one thread and on the current pool (medians of `runs`), and a full render on one thread
 /// and on the pool; and the median-split build's time. Every tree traces the same rays. With
 /// `export`, the grid's triangles and ray sets are first written to that folder (see
@@ -834,6 +837,11 @@ pub fn throughput(
             export_grid(dir, (g, s), &scene, sets)?;
         }
         trees.push(tree_throughput(&scene, kind, build, &accel, sets, runs));
+        if accel.isa() != Isa::BASELINE {
+            // The same tree again with the baseline's instructions, for the ratio in one run.
+            let baseline = accel.with_isa(Isa::BASELINE);
+            trees.push(tree_throughput(&scene, kind, build, &baseline, sets, runs));
+        }
     }
     Ok(Throughput {
         g,
@@ -884,6 +892,7 @@ fn tree_throughput(
     let stats = accel.stats().unwrap_or_default();
     TreeThroughput {
         kind,
+        isa: accel.isa(),
         build,
         accel_bytes: accel.memory_bytes(),
         leaf_bytes: accel.leaf_bytes(),

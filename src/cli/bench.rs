@@ -283,10 +283,11 @@ fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
 }
 
-const THROUGHPUT_HEADER: [&str; 13] = [
+const THROUGHPUT_HEADER: [&str; 14] = [
     "grid",
     "tris",
     "accel",
+    "simd",
     "build_ms",
     "median_build_ms",
     "bytes_per_tri",
@@ -306,6 +307,7 @@ fn throughput_rows(t: &Throughput, threads: usize) -> Vec<Vec<String>> {
             format!("G{}S{}", t.g, t.s),
             t.triangles.to_string(),
             tree.kind.name().to_string(),
+            tree.isa.name().to_string(),
             format!("{:.1}", ms(tree.build)),
             format!("{:.1}", ms(t.build_median_split)),
             format!(
@@ -365,9 +367,10 @@ fn print_throughput(t: &Throughput, threads: usize) {
     );
     for tree in &t.trees {
         outln!(
-            "  {}: build {:.1} ms; {} nodes, depth {}; memory {:.1} B/triangle = tree {:.1} \
+            "  {} ({}): build {:.1} ms; {} nodes, depth {}; memory {:.1} B/triangle = tree {:.1} \
              (nodes {:.1}, leaves {:.1}) + primitive records {:.1}",
             tree.kind.name(),
+            tree.isa,
             ms(tree.build),
             tree.nodes,
             tree.depth,

@@ -34,6 +34,17 @@ pub fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// The bundled scenes (`scenes/*.json`), in name order.
+pub fn bundled_scenes() -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(repo().join("scenes"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    v.sort();
+    v
+}
+
 /// Mean squared error over all channels.
 pub fn mse(a: &Film, b: &Film) -> f64 {
     assert_eq!((a.width, a.height), (b.width, b.height));

@@ -1,6 +1,7 @@
 //! SIMD kernels of the accelerators: one ray against four shapes at once, in `glam::Vec4` lanes
-//! ([`Sphere4`], [`Triangle4`]), and four rays against one shape ([`Rays4`], for the shadow rays
-//! of an area light).
+//! ([`Sphere4`], [`Triangle4`]), four rays against one shape ([`Rays4`], for the shadow rays
+//! of an area light), and eight boxes against one ray in one AVX register ([`boxes8`], for the
+//! eight-wide tree where the CPU has AVX2: [`Isa`]).
 //!
 //! Each kernel has a scalar twin in [`crate::geometry`] ([`crate::geometry::Shape::intersect_prepared`])
 //! and gives, lane for lane, the bits that twin gives: every step is an IEEE `f32` operation in
@@ -8,13 +9,18 @@
 //! only for NaN, are reached only by values that cannot be NaN or are meant to ignore NaN as the
 //! twin does. Whatever a kernel cannot settle that way it hands back to the twin
 //! ([`Hits4::scalar`]). Each kernel's tests compare it with its twin bit for bit on adversarial
-//! rays, so the BVHs built on them keep the contract of [`crate::accel`].
+//! rays, so the BVHs built on them keep the contract of [`crate::accel`]. The twin of the box
+//! kernel [`boxes8`] is the four-lane node test of the wide trees, which the slab test of
+//! [`crate::accel::aabb`] is in turn the twin of.
 
+pub mod boxes8;
+pub mod isa;
 pub mod ray4;
 pub mod rays4;
 pub mod sphere4;
 pub mod triangle4;
 
+pub use isa::Isa;
 pub use ray4::{Hits4, Ray4};
 pub use rays4::Rays4;
 pub use sphere4::Sphere4;
