@@ -43,7 +43,8 @@ struct BenchCli {
     csv: Option<PathBuf>,
     /// Ray throughput on the sphere grids (G=4,S=16 and G=16,S=32) with the binary, four-wide and
     /// eight-wide SAH trees: build time, and primary, shadow and incoherent rays on one thread and
-    /// on all.
+    /// on all. A tree whose queries use AVX2 on this CPU (the eight-wide one) is measured again
+    /// with the baseline instructions (the simd column).
     #[arg(long, conflicts_with = "crossover")]
     rays: bool,
     /// With --rays: also the 8,388,610-triangle grid (G=32, S=64), once (needs about 2 GB).
