@@ -29,7 +29,7 @@ use super::beam::Beam;
 use super::bvh::{BinaryTree, BvhOptions, BvhStats, Node as BinaryNode, NodeRef, Split};
 #[cfg(target_arch = "x86_64")]
 use super::kernels::boxes8::Planes8;
-use super::kernels::{isa, Isa, Ray4};
+use super::kernels::{Isa, Ray4};
 use super::leaves::{lanes, Best, Leaves};
 use super::stack::Stack;
 use super::traverse::{self, next_within, Tree, MAX_WIDTH, TRAVERSAL_STACK_SIZE};
@@ -404,7 +404,9 @@ impl<const C: usize> Tree for WideBvh<C> {
         if self.isa.avx2() {
             // SAFETY: an `Isa` says AVX2 only where the CPU has it.
             return unsafe {
-                isa::in_avx2(|isa| self.closest_in::<NX, NY, NZ>(prims, r, root, best, isa))
+                super::kernels::isa::in_avx2(|isa| {
+                    self.closest_in::<NX, NY, NZ>(prims, r, root, best, isa)
+                })
             };
         }
         self.closest_in::<NX, NY, NZ>(prims, r, root, best, Isa::BASELINE)
@@ -424,7 +426,9 @@ impl<const C: usize> Tree for WideBvh<C> {
         if self.isa.avx2() {
             // SAFETY: an `Isa` says AVX2 only where the CPU has it.
             return unsafe {
-                isa::in_avx2(|isa| self.any_in::<NX, NY, NZ>(prims, r, root, t_max, blocks, isa))
+                super::kernels::isa::in_avx2(|isa| {
+                    self.any_in::<NX, NY, NZ>(prims, r, root, t_max, blocks, isa)
+                })
             };
         }
         self.any_in::<NX, NY, NZ>(prims, r, root, t_max, blocks, Isa::BASELINE)

@@ -20,6 +20,7 @@ use glam::Vec4;
 use super::Ray4;
 
 /// The lower or the upper planes of eight boxes: a row of eight slots per axis.
+#[cfg(target_arch = "x86_64")]
 pub(in crate::accel) type Planes8 = [[f32; 8]; 3];
 
 /// The boxes `lo[a][l]..hi[a][l]` (axis `a`, slot `l`) against the ray `r` whose direction has

@@ -44,7 +44,7 @@ impl Isa {
         self.0 == Level::Avx2
     }
 
-    /// `baseline` or `avx2`, as `--simd` and the benchmarks print it.
+    /// `baseline` or `avx2`, as the `simd` column of `raytracer bench --rays` prints it.
     pub fn name(self) -> &'static str {
         match self.0 {
             Level::Baseline => "baseline",
