@@ -56,6 +56,11 @@ impl Isa {
 /// Calls `query` with the AVX2 value, from code compiled for AVX2: `query` is inlined into it, so
 /// that its loops take the AVX2 encodings and may call AVX kernels.
 ///
+/// Each query passes a closure of its own, called here only. A helper that took one closure and
+/// called it either here or on the baseline path leaves it out of line, compiled for the
+/// baseline, and this wrapper shrinks to a jump to it: the AVX2 copy is lost (seen in the
+/// symbol sizes).
+///
 /// # Safety
 /// Only where the CPU has AVX2, as an [`Isa::detect`] value that says AVX2 shows.
 #[cfg(target_arch = "x86_64")]
