@@ -303,15 +303,20 @@ impl Leaves {
         for block in self.blocks(start, count) {
             let h = block.intersect(r4, next_float_up(best.t));
             let scalar = h.scalar;
+            if h.hit | scalar == 0 {
+                continue;
+            }
+            // Lanes by index from arrays: `Vec4`'s own indexing is a jump table over the lane.
+            let (t, b1, b2) = (h.t.to_array(), h.b1.to_array(), h.b2.to_array());
             for l in lanes(h.hit | scalar) {
                 let p = block.primitive(l);
                 let b = bound(p, best);
                 let c = if scalar & (1 << l) != 0 {
                     scalar_test(prims, p, r, b)
                 } else {
-                    (h.t[l] < b).then(|| Candidate {
-                        t: h.t[l],
-                        aux: [h.b1[l], h.b2[l]],
+                    (t[l] < b).then(|| Candidate {
+                        t: t[l],
+                        aux: [b1[l], b2[l]],
                     })
                 };
                 if let Some(c) = c {
