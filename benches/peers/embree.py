@@ -21,11 +21,18 @@ Both run pinned to one CPU (`os.sched_setaffinity`), in the same invocation, so 
 even where absolute figures drift. The hit counts of both are printed: they agree to a few rays
 in a million (rays through shared edges and grazing hits are where two correct tests can differ).
 A benchmark, never a test: CI does not run it. The measured table is in docs/performance.md.
+
+`--instructions` counts instead of timing (needs valgrind): each ray set of the G=4 grid traced
+once under callgrind, by Embree (only `rtcIntersect1`/`rtcOccluded1` counted) and by each of our
+trees (`cargo build --release --example ray_set`: only its tracing functions counted), printed as
+instructions per ray. Counts do not drift with the machine's load as times do. Under valgrind
+Embree takes its AVX2 code (valgrind offers no AVX-512), as our eight-wide tree does.
 """
 
 import argparse
 import csv
 import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -89,13 +96,85 @@ def embree_grid(prefix, runs):
     return out
 
 
+def embree_trace_once(prefix, name):
+    """Builds grid `prefix` in Embree and traces its set `name` once (run under callgrind)."""
+    from embreex import rtcore_scene as rtcs
+    from embreex.mesh_construction import TriangleMesh
+
+    tris = load(prefix + ".tris.f32", 9).reshape(-1, 3, 3).astype(np.float32)
+    scene = rtcs.EmbreeScene()
+    TriangleMesh(scene, tris)
+    scene.run(np.zeros((1, 3), np.float32), np.array([[0, 0, 1]], np.float32))  # the build
+    lo, hi = tris.reshape(-1, 3).min(axis=0), tris.reshape(-1, 3).max(axis=0)
+    eps = np.float32(1e-5 * np.linalg.norm(hi - lo))
+    width = 7 if name == "shadow" else 6
+    rays = load("%s.%s.f32" % (prefix, name), width)
+    o, d = rays[:, 0:3], np.ascontiguousarray(rays[:, 3:6])
+    if name != "primary":
+        o = o + eps * d
+    o = np.ascontiguousarray(o, dtype=np.float32)
+    if width == 7:
+        scene.run(o, d, dists=np.ascontiguousarray(rays[:, 6] - eps), query="OCCLUDED")
+    else:
+        scene.run(o, d, query="INTERSECT")
+    return len(rays)
+
+
+def callgrind_instructions(cmd, toggles):
+    """Instructions callgrind counts inside the functions `toggles` while `cmd` runs."""
+    fd, out = tempfile.mkstemp(prefix="raytracer-callgrind-")
+    os.close(fd)
+    try:
+        subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out]
+                       + ["--toggle-collect=" + t for t in toggles] + cmd,
+                       check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        with open(out) as f:
+            for line in f:
+                if line.startswith(("summary:", "totals:")):
+                    return int(line.split()[1])
+    finally:
+        os.remove(out)
+    raise RuntimeError("callgrind wrote no totals for %s" % " ".join(cmd))
+
+
+def instructions(args, tmp):
+    """Instructions per ray on the G=4 grid, Embree's and each of our trees' (see the docs)."""
+    example = os.path.join(os.path.dirname(args.raytracer), "examples", "ray_set")
+    if not os.path.exists(example):
+        sys.exit("no %s (cargo build --release --example ray_set)" % example)
+    cmd = [args.raytracer, "bench", "--rays", "--threads", "1", "--runs", "1", "--export", tmp]
+    print("$ " + " ".join(cmd), file=sys.stderr)
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    prefix = os.path.join(tmp, "grid_G4_S16")
+    trees = ("sah", "sah4", "sah8", "sah8-baseline")
+    print("Instructions per ray (callgrind), G=4, S=16 (8,194 triangles), one query a ray\n")
+    print("| set | Embree | " + " | ".join("`%s`" % t for t in trees) + " |")
+    print("|---|---:|" + "---:|" * len(trees))
+    for name in ("primary", "shadow", "incoherent"):
+        rays = len(load("%s.%s.f32" % (prefix, name), 7 if name == "shadow" else 6))
+        theirs = callgrind_instructions(
+            [sys.executable, os.path.abspath(__file__), "--embree-trace", prefix, name],
+            ["rtcIntersect1", "rtcOccluded1"]) / rays
+        cells = []
+        for tree in trees:
+            mine = callgrind_instructions([example, "4", tree, name], ["ray_set::trace*"]) / rays
+            cells.append("%.0f (%.2f×)" % (mine, mine / theirs))
+        print("| %s | %.0f | %s |" % (name, theirs, " | ".join(cells)))
+        sys.stdout.flush()
+
+
 def main():
+    if len(sys.argv) == 4 and sys.argv[1] == "--embree-trace":
+        embree_trace_once(sys.argv[2], sys.argv[3])
+        return
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--raytracer", default=os.path.join(ROOT, "target", "release", "raytracer"))
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--huge", action="store_true", help="also the 8.4 M-triangle grid (about 3 GB)")
     ap.add_argument("--quick", action="store_true", help="the small smoke grid only")
     ap.add_argument("--cpu", type=int, default=None, help="the CPU both run on (default: the first allowed)")
+    ap.add_argument("--instructions", action="store_true",
+                    help="instructions per ray under callgrind instead of times (needs valgrind)")
     args = ap.parse_args()
     try:
         import embreex  # noqa: F401
@@ -106,6 +185,12 @@ def main():
     cpu = args.cpu if args.cpu is not None else min(os.sched_getaffinity(0))
     os.sched_setaffinity(0, {cpu})
     tmp = tempfile.mkdtemp(prefix="raytracer-embree-")
+    if args.instructions:
+        try:
+            instructions(args, tmp)
+        finally:
+            shutil.rmtree(tmp)
+        return
     ours_csv = os.path.join(tmp, "ours.csv")
     cmd = [args.raytracer, "bench", "--rays", "--threads", "1", "--runs", str(args.runs),
            "--export", tmp, "--csv", ours_csv]

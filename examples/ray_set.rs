@@ -1,0 +1,87 @@
+//! One ray set of `raytracer bench --rays` traced once, so that a profiler can count what a query
+//! costs: `benches/peers/embree.py --instructions` runs it under callgrind beside Embree, which
+//! traces the same rays.
+//!
+//! ```sh
+//! cargo build --release --example ray_set
+//! valgrind --tool=callgrind --toggle-collect='ray_set::trace*' \
+//!     target/release/examples/ray_set 4 sah4 primary
+//! ```
+//!
+//! Arguments: the grid (`4`: G=4, S=16, 8,194 triangles; `16`: G=16, S=32, 524,290), the tree
+//! (`sah`, `sah4`, `sah8`, or `sah8-baseline` for the eight-wide tree with the baseline
+//! instructions where the CPU has AVX2), and the set (`primary`, `shadow`, `incoherent`). The
+//! scene, the tree and the rays are those of the benchmark; only the functions `trace_closest`
+//! and `trace_any` trace them. Prints the rays traced and how many hit.
+
+use raytracer::accel::kernels::Isa;
+use raytracer::accel::{Accel, AccelKind};
+use raytracer::bench::{grid_light, ray_sets, sphere_grid};
+use raytracer::geometry::Primitives;
+use raytracer::ray::Ray;
+
+/// Closest-hit queries for each of `rays`: the hits.
+#[inline(never)]
+fn trace_closest(accel: &Accel, prims: &Primitives, rays: &[Ray]) -> usize {
+    rays.iter()
+        .filter(|r| accel.closest(prims, r, f32::INFINITY).is_some())
+        .count()
+}
+
+/// Any-hit queries for each of `rays` up to its distance: the rays blocked.
+#[inline(never)]
+fn trace_any(accel: &Accel, prims: &Primitives, rays: &[(Ray, f32)]) -> usize {
+    rays.iter()
+        .filter(|(r, t)| accel.any(prims, r, *t, |_| true))
+        .count()
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let usage = "usage: ray_set 4|16 sah|sah4|sah8|sah8-baseline primary|shadow|incoherent";
+    let [grid, tree, set] = args.as_slice() else {
+        eprintln!("{usage}");
+        std::process::exit(2);
+    };
+    let (g, s) = match grid.as_str() {
+        "4" => (4, 16),
+        "16" => (16, 32),
+        _ => {
+            eprintln!("{usage}");
+            std::process::exit(2);
+        }
+    };
+    let (kind, isa) = match tree.strip_suffix("-baseline") {
+        Some(kind) => (kind, Some(Isa::BASELINE)),
+        None => (tree.as_str(), None),
+    };
+    let kind: AccelKind = kind.parse().unwrap_or_else(|e| {
+        eprintln!("{e}\n{usage}");
+        std::process::exit(2);
+    });
+    let scene = sphere_grid(g, s, 640, 480);
+    let prims = &scene.primitives;
+    // The benchmark's leaf size (`raytracer bench --leaf-size`, 4).
+    let mut accel = Accel::build(prims, kind, 4);
+    if let Some(isa) = isa {
+        accel = accel.with_isa(isa);
+    }
+    // The benchmark's seed, so that these are the rays `bench --rays --export` writes.
+    let sets = ray_sets(&scene, &accel, grid_light(g), 0);
+    let (rays, hits) = match set.as_str() {
+        "primary" => (
+            sets.primary.len(),
+            trace_closest(&accel, prims, &sets.primary),
+        ),
+        "shadow" => (sets.shadow.len(), trace_any(&accel, prims, &sets.shadow)),
+        "incoherent" => (
+            sets.incoherent.len(),
+            trace_closest(&accel, prims, &sets.incoherent),
+        ),
+        _ => {
+            eprintln!("{usage}");
+            std::process::exit(2);
+        }
+    };
+    println!("{rays} rays, {hits} hit");
+}
