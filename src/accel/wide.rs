@@ -166,20 +166,16 @@ fn hit4<const C: usize, const NX: bool, const NY: bool, const NZ: bool>(
     (mask, entry)
 }
 
-/// The slot of `mask` (not empty) of least entry distance, and every slot's entry distance.
+/// The slot of `mask` (not empty) of least entry distance `near[slot]` (the lowest such slot).
 #[inline(always)]
-fn nearest<const C: usize>(mask: u32, entry: [Vec4; C]) -> (usize, [f32; MAX_WIDTH]) {
-    let mut near = [f32::INFINITY; MAX_WIDTH];
-    for (g, e) in entry.iter().enumerate() {
-        near[4 * g..4 * g + 4].copy_from_slice(&e.to_array());
-    }
+fn nearest(mask: u32, near: &[f32]) -> usize {
     let mut first = mask.trailing_zeros() as usize;
     for l in lanes(mask & (mask - 1)) {
         if near[l] < near[first] {
             first = l;
         }
     }
-    (first, near)
+    first
 }
 
 /// A BVH of `4·C` children a node.
@@ -462,7 +458,11 @@ impl<const C: usize> WideBvh<C> {
                     }
                     // Two or more: the nearest is visited now and the others wait on the
                     // stack, in slot order (see the module docs).
-                    let (first, near) = nearest(mask, entry);
+                    // The slots' entry distances, only the node's own `4·C` (an array of
+                    // `MAX_WIDTH` padded out and returned by value was copied twice).
+                    let near = entry.map(|e| e.to_array());
+                    let near = near.as_flattened();
+                    let first = nearest(mask, near);
                     for l in lanes(mask & !(1 << first)) {
                         stack.push((node.child(l), near[l]));
                     }
