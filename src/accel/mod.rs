@@ -293,8 +293,11 @@ impl Accel {
 }
 
 /// Whether one of the primitives `indices` accepted by `blocks` is hit with `0 < t < t_max`
-/// (what [`Accel::any`] asks of a leaf, of the unbounded list or of a beam's candidates).
-#[inline]
+/// (what [`Accel::any`] asks of a tree's unbounded primitives, where it has any). Out of line:
+/// inlined, it changed how the tree's any-hit loops around it were compiled, and a shadow ray on
+/// the grid of `raytracer bench --rays` took 28 more instructions (`benches/peers/embree.py
+/// --instructions`).
+#[inline(never)]
 pub(crate) fn any_among(
     prims: &Primitives,
     indices: &[u32],

@@ -119,7 +119,9 @@ pub(super) fn any(
     t_max: f32,
     mut blocks: impl FnMut(u32) -> bool,
 ) -> bool {
-    if any_among(prims, tree.unbounded(), r, t_max, &mut blocks) {
+    // Most trees have no unbounded primitive: no call for them.
+    let unbounded = tree.unbounded();
+    if !unbounded.is_empty() && any_among(prims, unbounded, r, t_max, &mut blocks) {
         return true;
     }
     let Some((lo, hi, root)) = tree.root() else {
