@@ -16,7 +16,7 @@
 
 use raytracer::accel::kernels::Isa;
 use raytracer::accel::{Accel, AccelKind};
-use raytracer::bench::{grid_light, ray_sets, sphere_grid};
+use raytracer::bench::{grid_light, ray_sets, sphere_grid, RayKind};
 use raytracer::geometry::Primitives;
 use raytracer::ray::Ray;
 
@@ -36,29 +36,35 @@ fn trace_any(accel: &Accel, prims: &Primitives, rays: &[(Ray, f32)]) -> usize {
         .count()
 }
 
+const USAGE: &str = "usage: ray_set 4|16 sah|sah4|sah8|sah8-baseline primary|shadow|incoherent";
+
+/// Leaves with `why` (if any) and the usage line, status 2.
+fn usage(why: &str) -> ! {
+    if !why.is_empty() {
+        eprintln!("{why}");
+    }
+    eprintln!("{USAGE}");
+    std::process::exit(2)
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let usage = "usage: ray_set 4|16 sah|sah4|sah8|sah8-baseline primary|shadow|incoherent";
     let [grid, tree, set] = args.as_slice() else {
-        eprintln!("{usage}");
-        std::process::exit(2);
+        usage("")
     };
     let (g, s) = match grid.as_str() {
         "4" => (4, 16),
         "16" => (16, 32),
-        _ => {
-            eprintln!("{usage}");
-            std::process::exit(2);
-        }
+        _ => usage(&format!("no grid {grid}")),
     };
     let (kind, isa) = match tree.strip_suffix("-baseline") {
         Some(kind) => (kind, Some(Isa::BASELINE)),
         None => (tree.as_str(), None),
     };
-    let kind: AccelKind = kind.parse().unwrap_or_else(|e| {
-        eprintln!("{e}\n{usage}");
-        std::process::exit(2);
-    });
+    let kind: AccelKind = kind.parse().unwrap_or_else(|e: String| usage(&e));
+    let Some(set) = RayKind::ALL.into_iter().find(|k| k.name() == set) else {
+        usage(&format!("no ray set {set}"))
+    };
     let scene = sphere_grid(g, s, 640, 480);
     let prims = &scene.primitives;
     // The benchmark's leaf size (`raytracer bench --leaf-size`, 4).
@@ -68,20 +74,16 @@ fn main() {
     }
     // The benchmark's seed, so that these are the rays `bench --rays --export` writes.
     let sets = ray_sets(&scene, &accel, grid_light(g), 0);
-    let (rays, hits) = match set.as_str() {
-        "primary" => (
+    let (rays, hits) = match set {
+        RayKind::Primary => (
             sets.primary.len(),
             trace_closest(&accel, prims, &sets.primary),
         ),
-        "shadow" => (sets.shadow.len(), trace_any(&accel, prims, &sets.shadow)),
-        "incoherent" => (
+        RayKind::Shadow => (sets.shadow.len(), trace_any(&accel, prims, &sets.shadow)),
+        RayKind::Incoherent => (
             sets.incoherent.len(),
             trace_closest(&accel, prims, &sets.incoherent),
         ),
-        _ => {
-            eprintln!("{usage}");
-            std::process::exit(2);
-        }
     };
     println!("{rays} rays, {hits} hit");
 }

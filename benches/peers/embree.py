@@ -50,74 +50,80 @@ def load(path, width):
     return a.reshape(-1, width)
 
 
-def embree_grid(prefix, runs):
+# The ray sets: name, floats a ray in the exported file, Embree's query.
+SETS = (("primary", 6, "INTERSECT"), ("shadow", 7, "OCCLUDED"), ("incoherent", 6, "INTERSECT"))
+
+
+def load_triangles(prefix):
+    return load(prefix + ".tris.f32", 9).reshape(-1, 3, 3).astype(np.float32)
+
+
+def embree_build(tris):
+    """Embree's scene of `tris`, built: the first query commits it."""
     from embreex import rtcore_scene as rtcs
     from embreex.mesh_construction import TriangleMesh
 
-    tris = load(prefix + ".tris.f32", 9).reshape(-1, 3, 3).astype(np.float32)
-    probe_o = np.zeros((1, 3), np.float32)
-    probe_d = np.array([[0, 0, 1]], np.float32)
-    builds = []
-    scene = None
-    for _ in range(runs):
-        scene = None
-        t0 = time.perf_counter()
-        scene = rtcs.EmbreeScene()
-        TriangleMesh(scene, tris)
-        scene.run(probe_o, probe_d)  # commits the scene: the build
-        builds.append(time.perf_counter() - t0)
-    out = {"triangles": len(tris), "build_s": statistics.median(builds)}
+    scene = rtcs.EmbreeScene()
+    TriangleMesh(scene, tris)
+    scene.run(np.zeros((1, 3), np.float32), np.array([[0, 0, 1]], np.float32))
+    return scene
+
+
+def embree_rays(prefix, name, width, tris):
+    """Set `name` of grid `prefix` as Embree traces it: origins, directions, and for shadow rays
+    the distances to the light (else None)."""
+    rays = load("%s.%s.f32" % (prefix, name), width)
     # Embree starts every ray at tnear = 0 and its test is not the one our origins were offset
     # for, so secondary rays would hit the surface they leave. They start a little further along
     # instead (1e-5 of the scene's diagonal), for Embree only.
     lo, hi = tris.reshape(-1, 3).min(axis=0), tris.reshape(-1, 3).max(axis=0)
     eps = np.float32(1e-5 * np.linalg.norm(hi - lo))
-    for name, width, query in (("primary", 6, "INTERSECT"), ("shadow", 7, "OCCLUDED"),
-                               ("incoherent", 6, "INTERSECT")):
-        rays = load("%s.%s.f32" % (prefix, name), width)
-        o = rays[:, 0:3]
-        d = np.ascontiguousarray(rays[:, 3:6])
-        if name != "primary":
-            o = o + eps * d
-        o = np.ascontiguousarray(o, dtype=np.float32)
-        dists = np.ascontiguousarray(rays[:, 6] - eps) if width == 7 else None
+    o = rays[:, 0:3]
+    d = np.ascontiguousarray(rays[:, 3:6])
+    if name != "primary":
+        o = o + eps * d
+    o = np.ascontiguousarray(o, dtype=np.float32)
+    dists = np.ascontiguousarray(rays[:, 6] - eps) if width == 7 else None
+    return o, d, dists
+
+
+def embree_trace(scene, rays, query):
+    o, d, dists = rays
+    if dists is None:
+        return scene.run(o, d, query=query)
+    return scene.run(o, d, dists=dists, query=query)
+
+
+def embree_grid(prefix, runs):
+    tris = load_triangles(prefix)
+    builds = []
+    scene = None
+    for _ in range(runs):
+        scene = None
+        t0 = time.perf_counter()
+        scene = embree_build(tris)
+        builds.append(time.perf_counter() - t0)
+    out = {"triangles": len(tris), "build_s": statistics.median(builds)}
+    for name, width, query in SETS:
+        rays = embree_rays(prefix, name, width, tris)
         times = []
         hits = 0
         for _ in range(runs):
             t0 = time.perf_counter()
-            if dists is None:
-                r = scene.run(o, d, query=query)
-            else:
-                r = scene.run(o, d, dists=dists, query=query)
+            r = embree_trace(scene, rays, query)
             times.append(time.perf_counter() - t0)
             # Both queries answer -1 for a miss (the primitive hit, or 0, otherwise).
             hits = int(np.count_nonzero(np.asarray(r) != -1))
-        out[name] = {"rays": len(rays), "s": statistics.median(times), "hits": hits}
+        out[name] = {"rays": len(rays[0]), "s": statistics.median(times), "hits": hits}
     return out
 
 
 def embree_trace_once(prefix, name):
     """Builds grid `prefix` in Embree and traces its set `name` once (run under callgrind)."""
-    from embreex import rtcore_scene as rtcs
-    from embreex.mesh_construction import TriangleMesh
-
-    tris = load(prefix + ".tris.f32", 9).reshape(-1, 3, 3).astype(np.float32)
-    scene = rtcs.EmbreeScene()
-    TriangleMesh(scene, tris)
-    scene.run(np.zeros((1, 3), np.float32), np.array([[0, 0, 1]], np.float32))  # the build
-    lo, hi = tris.reshape(-1, 3).min(axis=0), tris.reshape(-1, 3).max(axis=0)
-    eps = np.float32(1e-5 * np.linalg.norm(hi - lo))
-    width = 7 if name == "shadow" else 6
-    rays = load("%s.%s.f32" % (prefix, name), width)
-    o, d = rays[:, 0:3], np.ascontiguousarray(rays[:, 3:6])
-    if name != "primary":
-        o = o + eps * d
-    o = np.ascontiguousarray(o, dtype=np.float32)
-    if width == 7:
-        scene.run(o, d, dists=np.ascontiguousarray(rays[:, 6] - eps), query="OCCLUDED")
-    else:
-        scene.run(o, d, query="INTERSECT")
-    return len(rays)
+    tris = load_triangles(prefix)
+    scene = embree_build(tris)
+    width, query = next((w, q) for n, w, q in SETS if n == name)
+    embree_trace(scene, embree_rays(prefix, name, width, tris), query)
 
 
 def callgrind_instructions(cmd, toggles):
@@ -150,8 +156,8 @@ def instructions(args, tmp):
     print("Instructions per ray (callgrind), G=4, S=16 (8,194 triangles), one query a ray\n")
     print("| set | Embree | " + " | ".join("`%s`" % t for t in trees) + " |")
     print("|---|---:|" + "---:|" * len(trees))
-    for name in ("primary", "shadow", "incoherent"):
-        rays = len(load("%s.%s.f32" % (prefix, name), 7 if name == "shadow" else 6))
+    for name, width, _ in SETS:
+        rays = len(load("%s.%s.f32" % (prefix, name), width))
         theirs = callgrind_instructions(
             [sys.executable, os.path.abspath(__file__), "--embree-trace", prefix, name],
             ["rtcIntersect1", "rtcOccluded1"]) / rays
@@ -216,7 +222,7 @@ def main():
         g, s = grid[1:].split("S")
         prefix = os.path.join(tmp, "grid_G%s_S%s" % (g, s))
         e = embree_grid(prefix, args.runs)
-        for name in ("primary", "shadow", "incoherent"):
+        for name, _, _ in SETS:
             theirs = e[name]["rays"] / e[name]["s"] / 1e6
             for accel, rows in trees.items():
                 r = rows[name]
