@@ -84,6 +84,24 @@ impl ChannelSum {
         }
     }
 
+    /// What [`ChannelSum::mean`] gives for the sum of the one sample `v`, without the sum.
+    ///
+    /// A finite `v` with `2⁻²⁵ ≤ |v| ≤` [`FINITE_LIMIT`] is a whole number of units of 2⁻⁴⁸
+    /// (its 24-bit significand's last place is at least 2⁻⁴⁸), so its rounding keeps it, and the
+    /// mean of one is `v` itself. Anything else (zeros, whose sign the sum drops, tiny values,
+    /// non-finite and clamped ones) goes through the sum.
+    #[inline]
+    pub fn mean_of_one(v: f32) -> f32 {
+        const SMALLEST_WHOLE: f32 = 1.0 / (1u64 << 25) as f32;
+        if (SMALLEST_WHOLE..=FINITE_LIMIT).contains(&v.abs()) {
+            v
+        } else {
+            let mut s = ChannelSum::default();
+            s.add(v);
+            s.mean(1)
+        }
+    }
+
     /// Adds another sum (of other samples of the same pixel).
     pub fn merge(&mut self, other: &ChannelSum) {
         self.fixed += other.fixed;
@@ -132,6 +150,12 @@ impl PixelSum {
         for (a, b) in self.0.iter_mut().zip(&other.0) {
             a.merge(b);
         }
+    }
+
+    /// The mean a pixel of the one sample `c` has: [`ChannelSum::mean_of_one`] per channel.
+    #[inline]
+    pub fn mean_of_one(c: Vec3) -> Vec3 {
+        c.to_array().map(ChannelSum::mean_of_one).into()
     }
 
     /// The mean radiance of `count` samples summed here.
@@ -225,6 +249,47 @@ mod tests {
         for v in [0.0f32, 1.0, 0.5, 0.123_456_79, 1.0e-6, 3.0e9, -2.5] {
             assert_eq!(sum_of(&[v]).mean(1), v);
         }
+    }
+
+    /// The shortcut for one sample gives the sum's mean bit for bit: on every power of two and
+    /// its neighbours, the ends of the shortcut's range, zeros, subnormals, non-finite values
+    /// and a spread of bit patterns.
+    #[test]
+    fn the_mean_of_one_sample_is_the_sums() {
+        let mut bits: Vec<u32> = (0..=255u32)
+            .flat_map(|e| {
+                [
+                    e << 23,
+                    (e << 23) | 1,
+                    (e << 23) | 0x7f_ffff,
+                    (e << 23) | 0x40_0000,
+                ]
+            })
+            .collect();
+        bits.extend((0..200_000u32).map(|i| i.wrapping_mul(0x9e37_79b9) ^ (i >> 3)));
+        let limits = [2f32.powi(-25), FINITE_LIMIT];
+        bits.extend(
+            limits
+                .iter()
+                .flat_map(|l| [l.to_bits() - 1, l.to_bits(), l.to_bits() + 1]),
+        );
+        for b in bits {
+            for v in [f32::from_bits(b), -f32::from_bits(b)] {
+                let want = sum_of(&[v]).mean(1);
+                let got = ChannelSum::mean_of_one(v);
+                assert_eq!(got.to_bits(), want.to_bits(), "{v:e} ({b:#x})");
+            }
+        }
+        // The range's lower end matters: below it the sum rounds the sample.
+        let below = f32::from_bits(2f32.powi(-25).to_bits() - 1);
+        assert_ne!(sum_of(&[below]).mean(1), below);
+        let c = Vec3::new(0.25, -0.0, 1e-30);
+        let mut p = PixelSum::default();
+        p.add(c);
+        assert_eq!(
+            PixelSum::mean_of_one(c).to_array().map(f32::to_bits),
+            p.mean(1).to_array().map(f32::to_bits)
+        );
     }
 
     #[test]

@@ -170,11 +170,26 @@ pub fn render_with_accel_counting(
 /// What a pixel of the tile buffers holds: the mean of its samples, or their exact sums.
 trait TracedPixel: Copy + Default + Send + Sync {
     fn from_sum(sum: &PixelSum, count: u32) -> Self;
+
+    /// The pixel of the one sample `c`: what [`TracedPixel::from_sum`] gives for its sum.
+    #[inline]
+    fn from_one(c: Vec3) -> Self {
+        let mut sum = PixelSum::default();
+        sum.add(c);
+        Self::from_sum(&sum, 1)
+    }
 }
 
 impl TracedPixel for Vec3 {
     fn from_sum(sum: &PixelSum, count: u32) -> Vec3 {
         sum.mean(count)
+    }
+
+    /// The sample itself wherever the exact sum would give it back (most values: see
+    /// [`PixelSum::mean_of_one`]), which spares one-sample renders the sum.
+    #[inline]
+    fn from_one(c: Vec3) -> Vec3 {
+        PixelSum::mean_of_one(c)
     }
 }
 
@@ -482,14 +497,21 @@ impl Work<'_> {
         let count = self.samples.end - self.samples.start;
         let coords = (y0..y1).flat_map(|y| (x0..x1).map(move |x| (x, y)));
         for ((x, y), pixel) in coords.zip(pixels.iter_mut()) {
-            let mut sum = PixelSum::default();
-            for s in self.samples.clone() {
+            if count == 1 {
                 if tracer.cancelled() {
                     return tracer.counts();
                 }
-                sum.add(self.sample(&mut tracer, x, y, s));
+                *pixel = T::from_one(self.sample(&mut tracer, x, y, self.samples.start));
+            } else {
+                let mut sum = PixelSum::default();
+                for s in self.samples.clone() {
+                    if tracer.cancelled() {
+                        return tracer.counts();
+                    }
+                    sum.add(self.sample(&mut tracer, x, y, s));
+                }
+                *pixel = T::from_sum(&sum, count);
             }
-            *pixel = T::from_sum(&sum, count);
             if let Some(done) = self.pixels_done {
                 done.fetch_add(1, Ordering::Relaxed);
             }
