@@ -164,9 +164,11 @@ fn srgb_encode(x: f32) -> f32 {
     }
 }
 
+#[inline(always)]
 fn tonemap_channel(x: f32, map: ToneMap, exposure: f32) -> f32 {
     let x = x * exposure;
-    if !x.is_finite() || x <= 0.0 {
+    // Not finite, or not positive (two comparisons, which NaN fails).
+    if !(x > 0.0 && x < f32::INFINITY) {
         return 0.0;
     }
     match map {
@@ -202,6 +204,7 @@ fn to_byte(v: f32, bias: f32) -> u8 {
 }
 
 /// The rounding bias of [`to_byte`] for `map`.
+#[inline(always)]
 fn byte_bias(map: ToneMap) -> f32 {
     if map == ToneMap::Linear {
         0.0
@@ -213,8 +216,19 @@ fn byte_bias(map: ToneMap) -> f32 {
 /// 8-bit RGB bytes of the film (see `to_byte` for the quantisation):
 /// `3 * width * height` bytes, row-major from the top row, R, G, B per pixel.
 pub fn to_rgb8(film: &Film, map: ToneMap, exposure: f32) -> Vec<u8> {
-    let bias = byte_bias(map);
-    let byte = |x: f32| to_byte(tonemap_channel(x, map, exposure), bias);
+    // One loop per map, each with its map fixed, rather than the map's choice in every channel.
+    let with = |m: ToneMap| move |x: f32| to_byte(tonemap_channel(x, m, exposure), byte_bias(m));
+    match map {
+        ToneMap::Linear => bytes(film, with(ToneMap::Linear)),
+        ToneMap::Srgb => bytes(film, with(ToneMap::Srgb)),
+        ToneMap::Reinhard => bytes(film, with(ToneMap::Reinhard)),
+        ToneMap::Exposure => bytes(film, with(ToneMap::Exposure)),
+    }
+}
+
+/// The film's channels through `byte`, R, G, B per pixel.
+#[inline(always)]
+fn bytes(film: &Film, byte: impl Fn(f32) -> u8) -> Vec<u8> {
     let mut out = vec![0u8; film.pixels.len() * 3];
     for (rgb, p) in out.chunks_exact_mut(3).zip(&film.pixels) {
         rgb[0] = byte(p.x);
