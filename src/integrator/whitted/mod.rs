@@ -323,7 +323,8 @@ fn push_branches(pending: &mut Vec<Branch>, branches: &[Option<Branch>; 2]) -> u
 pub struct Whitted<'a> {
     pub scene: &'a Scene,
     pub accel: &'a Accel,
-    /// Quick closest hits for rays that start inside glass spheres.
+    /// Quick closest hits for rays that start inside glass spheres: the table [`interiors`]
+    /// builds, which holds the transmissive spheres and no other primitive.
     pub interiors: &'a Interiors,
     /// Cap on recursion on top of the scene's `nbounces`.
     pub max_depth: u32,
@@ -580,8 +581,13 @@ impl<'a> Whitted<'a> {
         if depth >= scene.nbounces.min(self.max_depth) {
             return color;
         }
-        // A ray leaving below a sphere's surface starts inside it.
-        let sphere = self.interiors.of(prim);
+        // A ray leaving below a sphere's surface starts inside it. Only transmissive spheres are
+        // in the table ([`interiors`]): for any other material no search is needed.
+        let sphere = if material.is_transmissive() {
+            self.interiors.of(prim)
+        } else {
+            None
+        };
         let leaving = Leaving {
             spawn: &spawn,
             sphere,
