@@ -210,10 +210,16 @@ const CENTRE_SNAP: f64 = 1e-4;
 
 /// For a coordinate `t` along an axis of `n` texels, the two neighbouring texel indices
 /// (wrapped into `0..n`) and the blend weight of the second.
+#[inline]
 fn wrap_axis(t: f32, n: u32) -> (u32, u32, f32) {
-    // Reduce to [0, 1) first, in f64 so large coordinates keep their fraction.
+    // Reduce to [0, 1] first, in f64 so large coordinates keep their fraction (a tiny negative
+    // `t` rounds up to 1). Most coordinates are in [0, 1) already, where the floor is 0.
     let t = f64::from(t);
-    let frac = t - floor_f64(t);
+    let frac = if (0.0..1.0).contains(&t) {
+        t
+    } else {
+        t - floor_f64(t)
+    };
     let x = frac * f64::from(n) - 0.5;
     let mut x0 = floor_f64(x);
     let mut w = x - x0;
@@ -223,10 +229,11 @@ fn wrap_axis(t: f32, n: u32) -> (u32, u32, f32) {
         x0 += 1.0;
         w = 0.0;
     }
-    let n = i64::from(n);
-    let i0 = (x0 as i64).rem_euclid(n);
-    let i1 = (i0 + 1) % n;
-    (i0 as u32, i1 as u32, w as f32)
+    // `x` is in [-0.5, n - 0.5], so `x0` is in [-1, n - 1] (a snap up stays below `n - 0.5`):
+    // the wrap is one step at the low end, without an integer division.
+    let i0 = if x0 < 0.0 { n - 1 } else { x0 as u32 };
+    let i1 = if i0 + 1 == n { 0 } else { i0 + 1 };
+    (i0, i1, w as f32)
 }
 
 #[cfg(test)]
@@ -279,6 +286,51 @@ mod tests {
         let m = t.sample(Vec2::new(2.0 / 3.0, 0.5));
         let mean = (t.texel(1, 0) + t.texel(2, 0) + t.texel(1, 1) + t.texel(2, 1)) * 0.25;
         assert!(close(m, mean), "{m}");
+    }
+
+    /// The reduction to `[0, 1)` and the wrap by remainders that [`wrap_axis`] replaces.
+    fn wrap_axis_by_remainders(t: f32, n: u32) -> (u32, u32, f32) {
+        let t = f64::from(t);
+        let frac = t - floor_f64(t);
+        let x = frac * f64::from(n) - 0.5;
+        let mut x0 = floor_f64(x);
+        let mut w = x - x0;
+        if w < CENTRE_SNAP {
+            w = 0.0;
+        } else if w > 1.0 - CENTRE_SNAP {
+            x0 += 1.0;
+            w = 0.0;
+        }
+        let n = i64::from(n);
+        let i0 = (x0 as i64).rem_euclid(n);
+        let i1 = (i0 + 1) % n;
+        (i0 as u32, i1 as u32, w as f32)
+    }
+
+    /// The wrap without divisions gives the remainders' texels and weight, bit for bit: at
+    /// texel centres and edges, in [0, 1] and far outside it, at tiny negative coordinates
+    /// (whose fraction rounds to 1) and on a spread of float bit patterns, for sizes 1 to 4097.
+    #[test]
+    fn wrap_axis_agrees_with_the_remainders() {
+        let mut ts: Vec<f32> = vec![0.0, -0.0, 1.0, -1.0, 0.5, 1e-30, -1e-30, -1e-8, 1e9, -1e9];
+        ts.extend((0..40_000u32).map(|i| f32::from_bits(i.wrapping_mul(0x9e37_79b9) >> 1)));
+        ts.extend((0..40_000u32).map(|i| -f32::from_bits(i.wrapping_mul(0x85eb_ca6b) >> 1)));
+        for n in [1u32, 2, 3, 7, 64, 512, 1000, 4097] {
+            let mut cases = ts.clone();
+            for i in 0..=n {
+                let c = i as f32 / n as f32;
+                cases.extend([c, (i as f32 + 0.5) / n as f32, c - 1e-7, c + 1e-7, c + 3.0]);
+            }
+            for &t in cases.iter().filter(|t| t.is_finite()) {
+                let (a0, a1, aw) = wrap_axis(t, n);
+                let (b0, b1, bw) = wrap_axis_by_remainders(t, n);
+                assert_eq!(
+                    (a0, a1, aw.to_bits()),
+                    (b0, b1, bw.to_bits()),
+                    "t = {t:e}, n = {n}"
+                );
+            }
+        }
     }
 
     #[test]
