@@ -132,25 +132,27 @@ fn rounded_away(po: Vec3, offset: Vec3) -> Vec3 {
             let x: __m128 = po.extend(0.0).into();
             let d: __m128 = offset.extend(0.0).into();
             let zero = _mm_setzero_ps();
-            let pick = |m: __m128, a: __m128i, b: __m128i| {
-                let m = _mm_castps_si128(m);
+            let pick = |m: __m128i, a: __m128i, b: __m128i| {
                 _mm_or_si128(_mm_and_si128(m, a), _mm_andnot_si128(m, b))
             };
             let bits = _mm_castps_si128(x);
-            let plus = _mm_add_epi32(bits, _mm_set1_epi32(1));
-            let minus = _mm_sub_epi32(bits, _mm_set1_epi32(1));
-            let is_zero = _mm_cmpeq_ps(x, zero);
-            // `next_float_up`: +∞ stays, ±0 goes to the least positive float, a number (or NaN)
-            // of sign + one step up in its bits, one of sign − one step down.
-            let up = pick(_mm_cmpge_ps(x, zero), plus, minus);
-            let up = pick(is_zero, _mm_set1_epi32(1), up);
-            let up = pick(_mm_cmpeq_ps(x, _mm_set1_ps(f32::INFINITY)), bits, up);
-            // `next_float_down`, the mirror image.
-            let down = pick(_mm_cmpgt_ps(x, zero), minus, plus);
-            let down = pick(is_zero, _mm_set1_epi32(0x8000_0001u32 as i32), down);
-            let down = pick(_mm_cmpeq_ps(x, _mm_set1_ps(f32::NEG_INFINITY)), bits, down);
-            let moved = pick(_mm_cmplt_ps(d, zero), down, bits);
-            let moved = pick(_mm_cmpgt_ps(d, zero), up, moved);
+            let one = _mm_set1_epi32(1);
+            // A step up or down moves a float's bits one away from zero where its sign (a NaN
+            // counts as negative, as `x >= 0` fails) is the step's, one towards zero where not.
+            let negative = _mm_castps_si128(_mm_cmpnge_ps(x, zero));
+            let down = _mm_castps_si128(_mm_cmplt_ps(d, zero));
+            let up = _mm_castps_si128(_mm_cmpgt_ps(d, zero));
+            let towards_zero = _mm_xor_si128(negative, down);
+            let moved = _mm_add_epi32(bits, _mm_or_si128(towards_zero, one));
+            // From ±0 the step is to the least float of the step's sign.
+            let from_zero = _mm_or_si128(_mm_and_si128(down, _mm_set1_epi32(i32::MIN)), one);
+            let moved = pick(_mm_castps_si128(_mm_cmpeq_ps(x, zero)), from_zero, moved);
+            // An infinity stepped away from zero stays; a zero or NaN offset moves nothing.
+            let magnitude = _mm_and_ps(x, _mm_castsi128_ps(_mm_set1_epi32(i32::MAX)));
+            let infinite = _mm_castps_si128(_mm_cmpeq_ps(magnitude, _mm_set1_ps(f32::INFINITY)));
+            let stays = _mm_andnot_si128(towards_zero, infinite);
+            let moving = _mm_andnot_si128(stays, _mm_or_si128(down, up));
+            let moved = pick(moving, moved, bits);
             Vec4::from(_mm_castsi128_ps(moved)).truncate()
         }
     }
