@@ -851,7 +851,6 @@ impl<'a> Whitted<'a> {
         surface: &Range<u32>,
         only: Option<[&Reachable; 2]>,
     ) -> f32 {
-        let scene = self.scene;
         self.counts.shadow += 1;
         let side = from.side_to(target);
         let only = only.map(|lists| lists[side as usize]);
@@ -859,13 +858,30 @@ impl<'a> Whitted<'a> {
             return 1.0; // what the query below answers when it has nothing to test
         }
         let (ray, dist) = from.ray_from(side, target);
+        self.transmittance_along(&ray, dist, only, from, target, surface)
+    }
+
+    /// [`Whitted::transmittance`] for the ray `from` builds towards `target` (its
+    /// [`SpawnPoints::ray_to`], `dist` long), already found (and counted), where `only` is the
+    /// list of its side.
+    #[inline(always)]
+    fn transmittance_along(
+        &mut self,
+        ray: &Ray,
+        dist: f32,
+        only: Option<&Reachable>,
+        from: &SpawnPoints,
+        target: Vec3,
+        surface: &Range<u32>,
+    ) -> f32 {
+        let scene = self.scene;
         let t_max = dist * (1.0 - LIGHT_CLEARANCE);
         if !scene.has_transmissive {
-            let blocked = self.any_hit(only, &ray, t_max, |p| !surface.contains(&p));
+            let blocked = self.any_hit(only, ray, t_max, |p| !surface.contains(&p));
             return if blocked { 0.0 } else { 1.0 };
         }
         let mut passage = Passage::default();
-        if self.any_hit(only, &ray, t_max, |p| passage.blocked_by(scene, surface, p)) {
+        if self.any_hit(only, ray, t_max, |p| passage.blocked_by(scene, surface, p)) {
             return 0.0;
         }
         if passage.settled() {

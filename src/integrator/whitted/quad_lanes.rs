@@ -260,9 +260,21 @@ impl Whitted<'_> {
         let mut answer = [1.0f32; 4];
         let Some(reachable) = reachable else {
             // No beam: each ray queries the whole accelerator.
+            if live.count_ones() == 1 {
+                let l = live.trailing_zeros() as usize;
+                answer[l] = self.transmittance(spawn, lane(&target, l), surface, None);
+                return answer;
+            }
+            // Rays built in lanes, with the bits `SpawnPoints::ray_to` gives each (the sides'
+            // normalisations and the lengths four at a time, rather than one ray's chain of
+            // square roots and divisions after another's).
+            self.counts.shadow += live.count_ones() as u64;
+            let rays = spawn.rays_to4(target);
             for (l, a) in answer.iter_mut().enumerate() {
                 if live & (1 << l) != 0 {
-                    *a = self.transmittance(spawn, lane(&target, l), surface, None);
+                    let ray = Ray::new(lane(&rays.origin, l), lane(&rays.dir, l));
+                    let (to, dist) = (lane(&target, l), rays.dist[l]);
+                    *a = self.transmittance_along(&ray, dist, None, spawn, to, surface);
                 }
             }
             return answer;
