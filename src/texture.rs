@@ -221,19 +221,27 @@ fn wrap_axis(t: f32, n: u32) -> (u32, u32, f32) {
         t - floor_f64(t)
     };
     let x = frac * f64::from(n) - 0.5;
-    let mut x0 = floor_f64(x);
-    let mut w = x - x0;
-    if w < CENTRE_SNAP {
-        w = 0.0;
-    } else if w > 1.0 - CENTRE_SNAP {
-        x0 += 1.0;
-        w = 0.0;
-    }
+    let (x0, w) = snapped_floor(x);
     // `x` is in [-0.5, n - 0.5], so `x0` is in [-1, n - 1] (a snap up stays below `n - 0.5`):
     // the wrap is one step at the low end, without an integer division.
     let i0 = if x0 < 0.0 { n - 1 } else { x0 as u32 };
     let i1 = if i0 + 1 == n { 0 } else { i0 + 1 };
     (i0, i1, w as f32)
+}
+
+/// `x` as a texel index and the blend weight towards the next, `(⌊x⌋, x − ⌊x⌋)`, with a weight
+/// within [`CENTRE_SNAP`] of 0 or 1 snapped to the nearer texel.
+#[inline]
+fn snapped_floor(x: f64) -> (f64, f64) {
+    let x0 = floor_f64(x);
+    let w = x - x0;
+    if w < CENTRE_SNAP {
+        (x0, 0.0)
+    } else if w > 1.0 - CENTRE_SNAP {
+        (x0 + 1.0, 0.0)
+    } else {
+        (x0, w)
+    }
 }
 
 #[cfg(test)]
@@ -288,19 +296,11 @@ mod tests {
         assert!(close(m, mean), "{m}");
     }
 
-    /// The reduction to `[0, 1)` and the wrap by remainders that [`wrap_axis`] replaces.
+    /// The reduction to `[0, 1)` and the wrap by remainders that [`wrap_axis`] replaced.
     fn wrap_axis_by_remainders(t: f32, n: u32) -> (u32, u32, f32) {
         let t = f64::from(t);
         let frac = t - floor_f64(t);
-        let x = frac * f64::from(n) - 0.5;
-        let mut x0 = floor_f64(x);
-        let mut w = x - x0;
-        if w < CENTRE_SNAP {
-            w = 0.0;
-        } else if w > 1.0 - CENTRE_SNAP {
-            x0 += 1.0;
-            w = 0.0;
-        }
+        let (x0, w) = snapped_floor(frac * f64::from(n) - 0.5);
         let n = i64::from(n);
         let i0 = (x0 as i64).rem_euclid(n);
         let i1 = (i0 + 1) % n;
