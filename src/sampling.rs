@@ -112,6 +112,19 @@ pub struct SampleKey {
 }
 
 impl SampleKey {
+    /// A key for camera sample `sample` of `spp` that holds no hash: for a sample whose tracer
+    /// reads no key ([`crate::integrator::Tracer::reads_keys`]) and whose film and lens points
+    /// are fixed (one sample through the pixel's centre, a pinhole camera). It saves the pixel's
+    /// two hashes where nothing would read them.
+    pub fn unread(sample: u32, spp: u32) -> SampleKey {
+        SampleKey {
+            key: 0,
+            sample,
+            spp,
+            pixel_state: 0,
+        }
+    }
+
     /// The source for camera sample `sample` of `spp` at pixel `(x, y)` under `seed`.
     pub fn new(x: u32, y: u32, sample: u32, spp: u32, seed: u64) -> SampleKey {
         let pixel_state = hash(&[hash(&[x as u64, y as u64, seed])]);

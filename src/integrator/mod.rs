@@ -157,6 +157,16 @@ impl Tracer<'_> {
         }
     }
 
+    /// Whether its camera samples' keys are read: always by the path tracer; by the Whitted
+    /// tracer only where a shading point may draw a sample ([`whitted::Whitted::draws`]).
+    #[inline]
+    pub fn reads_keys(&self) -> bool {
+        match self {
+            Tracer::Whitted(t) => t.draws(),
+            Tracer::Path(_) => true,
+        }
+    }
+
     /// The rays traced so far.
     pub fn counts(&self) -> RayCounts {
         match self {

@@ -471,11 +471,17 @@ impl Work<'_> {
     #[inline]
     fn sample(&self, tracer: &mut Tracer, x: u32, y: u32, s: u32) -> Vec3 {
         let options = self.options;
-        let key = SampleKey::new(x, y, s, self.spp, options.seed);
-        let method = options.pixel_method;
+        let thin_lens = self.scene.camera.lens.is_some();
         // One sample a pixel goes through its centre; a pinhole camera has no lens to sample.
+        // Then a tracer that reads no key needs none.
+        let key = if self.spp == 1 && !thin_lens && !tracer.reads_keys() {
+            SampleKey::unread(s, self.spp)
+        } else {
+            SampleKey::new(x, y, s, self.spp, options.seed)
+        };
+        let method = options.pixel_method;
         let centre = Vec2::splat(0.5);
-        let (film, lens) = match (self.scene.camera.lens.is_some(), self.spp == 1) {
+        let (film, lens) = match (thin_lens, self.spp == 1) {
             (false, true) => (centre, centre),
             (false, false) => (key.pixel_pattern(method, 0), centre),
             (true, true) => (centre, key.camera_pattern(method).1),

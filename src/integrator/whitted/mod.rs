@@ -409,6 +409,13 @@ impl<'a> Whitted<'a> {
         self
     }
 
+    /// Whether some shading point may draw a sample: an area light of more than one shadow ray,
+    /// or a rough mirror. Where none can, no sample key is read.
+    #[inline]
+    pub fn draws(&self) -> bool {
+        self.draws
+    }
+
     /// Whether [`Whitted::cancel`] is set.
     #[inline]
     pub fn cancelled(&self) -> bool {
@@ -1162,6 +1169,39 @@ mod tests {
             // Trees of several levels, so that the order of the sums is tested.
             assert!(deepest >= 4, "at most {deepest} secondary rays a pixel");
         }
+    }
+
+    /// Where no shading point draws a sample (point lights, smooth mirrors and glass: the glass
+    /// peer scene), no sample key is read: every pixel is the same with a key that holds no hash
+    /// ([`SampleKey::unread`], what a render passes such a tracer). Where one does (the area light
+    /// of [`SCENE`]), the tracer says so.
+    #[test]
+    fn a_tracer_that_draws_no_sample_reads_no_key() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/peers/scenes/glass.json");
+        let options = LoadOptions {
+            width: Some(64),
+            ..LoadOptions::default()
+        };
+        let scene = crate::scene::load(&path, &options).unwrap();
+        let accel = Accel::build(&scene.primitives, AccelKind::Sah4, 4);
+        let table = interiors(&scene, &accel);
+        let options = TraceOptions::default();
+        let mut w = Whitted::new(&scene, &accel, &table, 8, options, Method::Jittered);
+        assert!(!w.draws());
+        let mut lit = 0;
+        for_each_pixel_centre(&scene, |x, y, key, ray| {
+            let keyed = w.trace_camera(ray, key);
+            let unread = w.trace_camera(ray, &SampleKey::unread(0, 1));
+            let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+            assert_eq!(bits(keyed), bits(unread), "pixel ({x}, {y})");
+            lit += usize::from(keyed != scene.background);
+        });
+        assert!(lit > 1000, "{lit} pixels see the scene");
+        let scene = load_str(SCENE, Path::new("draws.json"), &LoadOptions::default()).unwrap();
+        let accel = Accel::build(&scene.primitives, AccelKind::Sah4, 4);
+        let table = interiors(&scene, &accel);
+        let w = Whitted::new(&scene, &accel, &table, 8, options, Method::Jittered);
+        assert!(w.draws());
     }
 
     /// Calls `f` with each pixel `(x, y)` of `scene`, row by row, its sample key (seed 7) and
