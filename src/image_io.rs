@@ -368,7 +368,7 @@ pub enum TextureImage {
 /// [`read_image_with`] for a texture: the same image, with 8-bit samples left as bytes (a
 /// quarter of the floats' memory).
 pub fn read_texture_with(path: &Path, limits: &ReadLimits) -> Result<TextureImage, ImageError> {
-    let decoded = decode_with(path, limits)?;
+    let mut decoded = decode_with(path, limits)?;
     let (channels, gray) = match decoded.color {
         ColorType::Rgb8 => (3, false),
         ColorType::Rgba8 => (4, false),
@@ -376,22 +376,38 @@ pub fn read_texture_with(path: &Path, limits: &ReadLimits) -> Result<TextureImag
         ColorType::La8 => (2, true),
         _ => return Ok(TextureImage::Floats(decoded.into_film(path)?)),
     };
-    let mut texels = Vec::new();
-    texels
-        .try_reserve_exact(decoded.pixels())
-        .map_err(|_| decoded.out_of_memory(path, decoded.pixels() as u64 * 3))?;
-    if channels == 3 {
-        // Already in the texels' layout: one copy (`chunks_exact` would take about a dozen
-        // instructions a pixel, 3 M for a 512² texture).
-        texels.extend_from_slice(bytemuck::cast_slice::<u8, [u8; 3]>(&decoded.raw));
+    let raw = std::mem::take(&mut decoded.raw);
+    let pixels = decoded.pixels();
+    let reserved = || {
+        let mut texels: Vec<[u8; 3]> = Vec::new();
+        match texels.try_reserve_exact(pixels) {
+            Ok(()) => Ok(texels),
+            Err(_) => Err(decoded.out_of_memory(path, pixels as u64 * 3)),
+        }
+    };
+    let texels = if channels == 3 {
+        // Already in the texels' layout: the decoder's buffer is taken over as it is, where its
+        // capacity is a whole number of texels (as an exact reservation makes it), else copied
+        // once. (A copy is a second buffer of the texture's size: 0.8 MB and 192 page faults
+        // for a 512² texture.)
+        match bytemuck::allocation::try_cast_vec::<u8, [u8; 3]>(raw) {
+            Ok(texels) => texels,
+            Err((_, raw)) => {
+                let mut texels = reserved()?;
+                texels.extend_from_slice(bytemuck::cast_slice::<u8, [u8; 3]>(&raw));
+                texels
+            }
+        }
     } else {
-        let chunks = decoded.raw.chunks_exact(channels);
+        let mut texels = reserved()?;
+        let chunks = raw.chunks_exact(channels);
         if gray {
             texels.extend(chunks.map(|px| [px[0]; 3]));
         } else {
             texels.extend(chunks.map(|px| [px[0], px[1], px[2]]));
         }
-    }
+        texels
+    };
     Ok(TextureImage::Bytes {
         width: decoded.width,
         height: decoded.height,
