@@ -111,7 +111,7 @@ pub struct RenderOutput {
 /// Why a render could not start.
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
-    /// The film and the buffer the tiles are traced into cannot be allocated.
+    /// The film (and, for a part, its sums) cannot be allocated.
     #[error(
         "an image of {width}×{height} needs {gib:.1} GiB of memory for its pixels, more than can be allocated"
     )]
@@ -220,11 +220,9 @@ struct Plan {
 enum Buffers {
     Means {
         film: Vec<Vec3>,
-        tiles: Vec<Vec3>,
     },
     Sums {
         sums: Vec<PixelSum>,
-        tiles: Vec<PixelSum>,
         film: Vec<Vec3>,
     },
     /// Adaptive sampling: the state of every pixel of `region`, the window with its apron.
@@ -277,18 +275,16 @@ impl Plan {
                 settings,
             }
         } else if options.keep_sums {
-            let per_pixel = 2 * std::mem::size_of::<PixelSum>() + std::mem::size_of::<Vec3>();
+            let per_pixel = std::mem::size_of::<PixelSum>() + std::mem::size_of::<Vec3>();
             let too_large = || too_large(n, per_pixel);
             Buffers::Sums {
                 sums: try_buffer(n).ok_or_else(too_large)?,
-                tiles: try_buffer(n).ok_or_else(too_large)?,
                 film: try_buffer(n).ok_or_else(too_large)?,
             }
         } else {
-            let too_large = || too_large(n, 2 * std::mem::size_of::<Vec3>());
+            let too_large = || too_large(n, std::mem::size_of::<Vec3>());
             Buffers::Means {
                 film: try_buffer(n).ok_or_else(too_large)?,
-                tiles: try_buffer(n).ok_or_else(too_large)?,
             }
         };
         Ok(Plan {
@@ -348,16 +344,12 @@ impl Plan {
                     cancelled: traced.cancelled,
                 };
             }
-            Buffers::Means { mut film, tiles } => {
-                let (counts, cancelled) = work.trace(tiles, &mut film);
+            Buffers::Means { mut film } => {
+                let (counts, cancelled) = work.trace(&mut film);
                 (film, None, counts, cancelled)
             }
-            Buffers::Sums {
-                mut sums,
-                tiles,
-                mut film,
-            } => {
-                let (counts, cancelled) = work.trace(tiles, &mut sums);
+            Buffers::Sums { mut sums, mut film } => {
+                let (counts, cancelled) = work.trace(&mut sums);
                 film.par_iter_mut()
                     .zip(sums.par_iter())
                     .for_each(|(m, s)| *m = s.mean(count));
@@ -389,11 +381,11 @@ pub(crate) struct Work<'a> {
 }
 
 impl Work<'_> {
-    /// Traces every tile of the window into `tiles` (each tile one contiguous slice a thread can
-    /// own: bands of `TILE` rows, each band its tiles one after the other, each tile its rows),
-    /// then copies them into `out`, row-major over the window. Returns the rays traced and
-    /// whether the render was cancelled (`out` is then incomplete).
-    fn trace<T: TracedPixel>(&self, mut tiles: Vec<T>, out: &mut [T]) -> (RayCounts, bool) {
+    /// Traces every tile of the window into `out`, row-major over the window: the window is cut
+    /// into bands of `TILE` rows and each band's rows into `TILE`-wide pieces, so a tile is the
+    /// pieces of one column of a band, which its thread owns. Returns the rays traced and whether
+    /// the render was cancelled (`out` is then incomplete).
+    fn trace<T: TracedPixel>(&self, out: &mut [T]) -> (RayCounts, bool) {
         let (w, h) = (self.window.width() as usize, self.window.height() as usize);
         let tile = TILE as usize;
         let bar = if self.options.progress {
@@ -411,24 +403,29 @@ impl Work<'_> {
 
         let band = w * tile;
         let (x_origin, y_origin) = (self.window.x0, self.window.y0);
-        let counts = tiles
+        let counts = out
             .par_chunks_mut(band)
             .enumerate()
             .flat_map(|(ty, rows)| {
-                let th = rows.len() / w;
-                rows.par_chunks_mut(tile * th)
-                    .enumerate()
-                    .map(move |(tx, pixels)| {
-                        let x0 = x_origin + (tx * tile) as u32;
-                        let y0 = y_origin + (ty * tile) as u32;
-                        (x0, y0, pixels)
-                    })
+                let mut tiles: Vec<Vec<&mut [T]>> = (0..w.div_ceil(tile))
+                    .map(|_| Vec::with_capacity(tile))
+                    .collect();
+                for row in rows.chunks_mut(w) {
+                    for (column, piece) in tiles.iter_mut().zip(row.chunks_mut(tile)) {
+                        column.push(piece);
+                    }
+                }
+                tiles.into_par_iter().enumerate().map(move |(tx, rows)| {
+                    let x0 = x_origin + (tx * tile) as u32;
+                    let y0 = y_origin + (ty * tile) as u32;
+                    (x0, y0, rows)
+                })
             })
-            .map(|(x0, y0, pixels)| {
+            .map(|(x0, y0, mut rows)| {
                 if cancelled(self.options) {
                     return RayCounts::default();
                 }
-                let counts = self.tile(x0, y0, pixels);
+                let counts = self.tile(x0, y0, &mut rows);
                 bar.inc(1);
                 counts
             })
@@ -437,24 +434,7 @@ impl Work<'_> {
                 a
             });
         bar.finish_and_clear();
-
-        let cancelled = cancelled(self.options);
-        if !cancelled {
-            out.par_chunks_mut(band)
-                .zip(tiles.par_chunks(band))
-                .for_each(|(rows, by_tile)| {
-                    let th = rows.len() / w;
-                    let mut at = 0;
-                    for x0 in (0..w).step_by(tile) {
-                        let tw = tile.min(w - x0);
-                        for y in 0..th {
-                            rows[y * w + x0..][..tw].copy_from_slice(&by_tile[at..at + tw]);
-                            at += tw;
-                        }
-                    }
-                });
-        }
-        (counts, cancelled)
+        (counts, cancelled(self.options))
     }
 
     /// A tracer for one tile's or row's pixels.
@@ -491,18 +471,18 @@ impl Work<'_> {
         tracer.trace_camera(&ray, &key)
     }
 
-    /// Traces the tile whose top left pixel is `(x0, y0)` (in the whole image) into `pixels`
-    /// (its rows, top first) and returns the rays it took. Stops early, leaving pixels unset,
-    /// when the render is cancelled.
-    fn tile<T: TracedPixel>(&self, x0: u32, y0: u32, pixels: &mut [T]) -> RayCounts {
-        let (x1, y1) = (
-            (x0 + TILE).min(self.window.x1),
-            (y0 + TILE).min(self.window.y1),
-        );
+    /// Traces the tile whose top left pixel is `(x0, y0)` (in the whole image) into `rows` (its
+    /// rows, top first) and returns the rays it took. Stops early, leaving pixels unset, when
+    /// the render is cancelled.
+    fn tile<T: TracedPixel>(&self, x0: u32, y0: u32, rows: &mut [&mut [T]]) -> RayCounts {
         let mut tracer = self.tracer();
         let count = self.samples.end - self.samples.start;
-        let coords = (y0..y1).flat_map(|y| (x0..x1).map(move |x| (x, y)));
-        for ((x, y), pixel) in coords.zip(pixels.iter_mut()) {
+        let pixels = (y0..).zip(rows.iter_mut()).flat_map(|(y, row)| {
+            (x0..)
+                .zip(row.iter_mut())
+                .map(move |(x, pixel)| (x, y, pixel))
+        });
+        for (x, y, pixel) in pixels {
             if count == 1 {
                 if tracer.cancelled() {
                     return tracer.counts();
