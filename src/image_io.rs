@@ -301,18 +301,18 @@ pub fn encode_image(
                 .map_err(encode_err)?;
         }
         OutputFormat::Exr => {
-            let channel = |c: usize| {
-                let values = film.pixels.iter().map(|p| p[c] * exposure).collect();
-                exr::prelude::AnyChannel::new(
-                    ["R", "G", "B"][c],
-                    exr::prelude::FlatSamples::F32(values),
-                )
-            };
+            // The samples are read from the film as the lines are compressed, not copied into
+            // channels first (three more buffers the film's size).
+            let w = width as usize;
+            let rgb = exr::prelude::SpecificChannels::rgb(|at: exr::prelude::Vec2<usize>| {
+                let p = film.pixels[at.y() * w + at.x()] * exposure;
+                (p.x, p.y, p.z)
+            });
             let layer = exr::prelude::Layer::new(
-                (width as usize, height as usize),
+                (w, height as usize),
                 exr::prelude::LayerAttributes::default(),
                 exr_encoding(),
-                exr::prelude::AnyChannels::sort(vec![channel(0), channel(1), channel(2)].into()),
+                rgb,
             );
             use exr::prelude::WritableImage;
             exr::prelude::Image::from_layer(layer)
