@@ -454,7 +454,7 @@ impl Work<'_> {
         let thin_lens = self.scene.camera.lens.is_some();
         // One sample a pixel goes through its centre; a pinhole camera has no lens to sample.
         // Then a tracer that reads no key needs none.
-        let key = if self.spp == 1 && !thin_lens && !tracer.reads_keys() {
+        let mut key = if self.spp == 1 && !thin_lens && !tracer.reads_keys() {
             SampleKey::unread(s, self.spp)
         } else {
             SampleKey::new(x, y, s, self.spp, options.seed)
@@ -463,7 +463,7 @@ impl Work<'_> {
         let centre = Vec2::splat(0.5);
         let (film, lens) = match (thin_lens, self.spp == 1) {
             (false, true) => (centre, centre),
-            (false, false) => (key.pixel_pattern(method, 0), centre),
+            (false, false) => (key.pinhole_pattern(method), centre),
             (true, true) => (centre, key.camera_pattern(method).1),
             (true, false) => key.camera_pattern(method),
         };
