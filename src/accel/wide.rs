@@ -114,7 +114,7 @@ impl<const C: usize> Node<C> {
     }
 }
 
-/// Slab test of the boxes of `node` (the decisions of [`slab`] on each, for a ray whose
+/// Slab test of the boxes of `node` (the decisions of [`slab`](super::aabb::slab) on each, for a ray whose
 /// direction has the signs `NX`, `NY`, `NZ`: `true` for negative), four at a time, or eight at a
 /// time where `isa` has AVX2 ([`super::kernels::boxes8`]): a mask of the boxes hit (bit `l`:
 /// slot `l`) and their entry distances.
