@@ -229,7 +229,13 @@ fn an_adaptive_study_compares_at_equal_error() {
             .output()
             .unwrap()
     };
-    let out = study(&["--adaptive", "--thresholds", "0.04,0.01"]);
+    let out = study(&[
+        "--adaptive",
+        "--thresholds",
+        "0.04,0.01",
+        "--variance-samples",
+        "32",
+    ]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
     assert!(stderr.contains("[10/10]"), "no progress: {stderr}");
@@ -266,7 +272,12 @@ fn an_adaptive_study_compares_at_equal_error() {
         assert!(bound > 0.0 && bound < 0.6, "{last:?}");
         assert_eq!(last[11], last[9], "{last:?}");
     }
-    assert!(String::from_utf8_lossy(&out.stdout).contains("best allocation: "));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("best allocation: "), "{stdout}");
+    assert!(
+        stdout.contains("measured by 8 renders of 32 spp"),
+        "{stdout}"
+    );
     let mean = |r: &Vec<String>| r[3].parse::<f64>().unwrap();
     for r in &adaptive {
         assert_eq!(r.len(), 13, "{r:?}");
@@ -296,10 +307,21 @@ fn an_adaptive_study_compares_at_equal_error() {
     assert_eq!((plot.width(), plot.height()), (900, 560));
     assert!(dir.path().join("reference.exr").exists());
 
+    // Without --variance-samples the noise is measured at the cap, --quick's 64 samples.
+    let out = study(&["--adaptive", "--thresholds", "0.04"]);
+    assert!(out.status.success());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("measured by 8 renders of 64 spp"),
+        "{stdout}"
+    );
+
     for bad in [
         &["--thresholds", "0.01"][..],
         &["--adaptive", "--thresholds", "0"],
         &["--adaptive", "--skip-work"],
+        &["--variance-samples", "32"],
+        &["--adaptive", "--variance-samples", "0"],
     ] {
         let out = study(bad);
         assert_eq!(out.status.code(), Some(2), "{bad:?}");

@@ -104,6 +104,15 @@ struct StudyCli {
         value_parser = values::positive_f32
     )]
     thresholds: Vec<f32>,
+    /// Pixel samples in each of the --adaptive study's 8 renders that measure each pixel's
+    /// noise for the best allocation (default and most: --max-samples, the noise at the errors
+    /// the study compares at; a path-traced scene's rare bright paths show only in long renders).
+    #[arg(
+        long,
+        requires = "adaptive",
+        value_parser = clap::value_parser!(u32).range(1..=65536)
+    )]
+    variance_samples: Option<u32>,
     /// Samples per pixel for --skip-work.
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=65536))]
     spp: u32,
@@ -418,17 +427,19 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         |_| "samples per pixel",
         study::adaptive::reference,
     )?;
+    let max_samples = if cli.quick {
+        cli.max_samples.min(QUICK_ADAPTIVE_CAP)
+    } else {
+        cli.max_samples
+    };
     let options = study::adaptive::AdaptiveStudyOptions {
-        max_samples: if cli.quick {
-            cli.max_samples.min(QUICK_ADAPTIVE_CAP)
-        } else {
-            cli.max_samples
-        },
+        max_samples,
         thresholds: cli.thresholds.clone(),
         integrator,
         runs: cli.runs as usize,
         region: cli.region,
         seed: cli.seed,
+        variance_samples: cli.variance_samples.unwrap_or(max_samples).min(max_samples),
     };
     let result = study::adaptive::run_adaptive_study(&scene, &reference, &options, |i, n, line| {
         eprintln!("study: [{i}/{n}] {line}");
@@ -505,7 +516,7 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         outln!(
             "best allocation at the uniform runs' convergence, MSE ∝ n^-{a:.2} from {} spp up: \
              {b:.2}× uniform's samples",
-            study::adaptive::VARIANCE_SAMPLES
+            study::adaptive::FIT_FROM_SAMPLES
         );
         outln!(
             "known: the samples ratio the same stopping rule would reach with an exact error \

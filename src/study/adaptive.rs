@@ -36,6 +36,10 @@ pub struct AdaptiveStudyOptions {
     /// Region the error is measured over; the whole image without one.
     pub region: Option<Region>,
     pub seed: u64,
+    /// Pixel samples in each of the [`VARIANCE_RENDERS`] renders that measure each pixel's noise
+    /// for the best allocation: rare bright paths, a path-traced scene's caustics, show only in
+    /// renders long enough to meet them (docs/adaptive.md, "Path tracing at tight thresholds").
+    pub variance_samples: u32,
 }
 
 /// One adaptive render of a study.
@@ -79,21 +83,25 @@ pub struct AdaptiveStudy {
     /// Uniform runs (sampler Sobol), in sample order.
     pub uniform: Vec<Run>,
     pub adaptive: Vec<AdaptiveRun>,
-    /// [`PixelNoise::allocation_bound`] of the scene over the study's region at one-over-n convergence: no
-    /// adaptive run can do better where each pixel's error falls as one over its samples.
+    /// [`PixelNoise::allocation_bound`] of the scene over the study's region at one-over-n
+    /// convergence: no allocation of samples by the pixels' noise does better where each
+    /// pixel's error falls as one over its samples.
     pub bound: Option<f64>,
     /// The exponent `a` of the uniform runs' convergence, MSE ∝ n^−a, fitted from
-    /// [`VARIANCE_SAMPLES`] samples up, and [`PixelNoise::allocation_bound`] at it: the bound where every
+    /// [`FIT_FROM_SAMPLES`] samples up, and [`PixelNoise::allocation_bound`] at it: the bound where every
     /// pixel converges as the image does.
     pub bound_at_rate: Option<(f64, f64)>,
     /// Pixel samples in each of the [`VARIANCE_RENDERS`] renders the bound was measured from.
     pub variance_samples: u32,
 }
 
-/// Renders, under seeds of their own, of `VARIANCE_SAMPLES` uniform Sobol pixel samples each:
-/// the spread of their pixels gives each pixel's variance for [`PixelNoise::allocation_bound`].
+/// Renders, under seeds of their own, of [`AdaptiveStudyOptions::variance_samples`] uniform
+/// Sobol pixel samples each: the spread of their pixels gives each pixel's variance for
+/// [`PixelNoise::allocation_bound`].
 pub const VARIANCE_RENDERS: u64 = 8;
-pub const VARIANCE_SAMPLES: u32 = 16;
+/// The fewest samples of the uniform runs the convergence rate is fitted to: fewer are
+/// dominated by aliasing more than by noise.
+pub const FIT_FROM_SAMPLES: u32 = 16;
 /// The first of the variance renders' seeds (the runs use `--seed`, the reference its own).
 const VARIANCE_SEED: u64 = 0x0a11_0ca7_e000;
 
@@ -133,9 +141,11 @@ impl PixelNoise {
     }
 
     /// The least share of uniform sampling's samples with which any allocation of samples to
-    /// the pixels reaches uniform sampling's MSE over them, when each pixel's error variance
-    /// falls as σᵢ²·(16/nᵢ)^a, σᵢ² its variance at 16 samples (a = 1: independent samples;
-    /// stratified ones converge faster, a > 1).
+    /// the pixels reaches uniform sampling's expected MSE over them, when each pixel's error
+    /// variance falls as σᵢ²·(m/nᵢ)^a, σᵢ² its variance at the m samples it was measured at
+    /// (a = 1: independent samples; stratified ones converge faster, a > 1). An adaptive render
+    /// can go below it where rare bright paths carry the variance: it stops a pixel that has
+    /// not met one yet, leaving it a bias smaller than the variance it skips.
     ///
     /// Minimising Σnᵢ under a fixed Σσᵢ²·nᵢ^−a (a Lagrange multiplier) gives nᵢ ∝ σᵢ^(2p) with
     /// p = 1/(a + 1), and the share `(S^(a+1) / (N^a · Σσᵢ²))^(1/a)` with S = Σσᵢ^(2p) over the
@@ -242,12 +252,12 @@ fn ln_gamma(mut x: f64) -> f64 {
     (x - 0.5) * x.ln() - x + 0.5 * (2.0 * std::f64::consts::PI).ln() + series - shift
 }
 
-/// The exponent `a` of MSE ∝ n^−a over the uniform runs of [`VARIANCE_SAMPLES`] samples or more
-/// (fewer are dominated by aliasing more than by noise); `None` with fewer than two of them.
+/// The exponent `a` of MSE ∝ n^−a over the uniform runs of [`FIT_FROM_SAMPLES`] samples or more;
+/// `None` with fewer than two of them.
 fn convergence_exponent(uniform: &[Run]) -> Option<f64> {
     let points: Vec<(f64, f64)> = runs_of(uniform, Method::Sobol)
         .into_iter()
-        .filter(|r| r.samples >= VARIANCE_SAMPLES)
+        .filter(|r| r.samples >= FIT_FROM_SAMPLES)
         .map(|r| (f64::from(r.samples), r.mse_region))
         .collect();
     if points.len() < 2 {
@@ -324,7 +334,7 @@ pub fn run_adaptive_study(
         );
         uniform.push(run);
     }
-    let variance_samples = VARIANCE_SAMPLES.min(options.max_samples);
+    let variance_samples = options.variance_samples;
     let films = (0..VARIANCE_RENDERS)
         .map(|k| {
             let seed = VARIANCE_SEED + k;
