@@ -306,6 +306,14 @@ fn an_adaptive_study_compares_at_equal_error() {
     let plot = image::open(dir.path().join("study.png")).unwrap();
     assert_eq!((plot.width(), plot.height()), (900, 560));
     assert!(dir.path().join("reference.exr").exists());
+    // Where the best allocation puts its samples: the image's size, and not one colour, since
+    // the thin-lens scene's noise sits in its defocused half.
+    let allocation = image::open(dir.path().join("allocation.png"))
+        .unwrap()
+        .to_rgb8();
+    assert_eq!((allocation.width(), allocation.height()), (48, 36));
+    let first = allocation.get_pixel(0, 0);
+    assert!(allocation.pixels().any(|p| p != first));
 
     // Without --variance-samples the noise is measured at the cap, --quick's 64 samples.
     let out = study(&["--adaptive", "--thresholds", "0.04"]);

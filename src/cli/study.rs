@@ -187,6 +187,8 @@ struct Setup {
     integrator: crate::integrator::Kind,
     reference: crate::film::Film,
     outputs: StudyOutputs,
+    /// The further outputs asked of [`setup`], in the output folder, created.
+    extra: Vec<(PathBuf, PendingFile)>,
 }
 
 /// A study's CSV and plot, created and waiting for their bytes.
@@ -215,11 +217,13 @@ impl StudyOutputs {
     }
 }
 
-/// Loads the scene, claims the outputs, and reads the reference or renders it with
-/// `render_reference(scene, integrator, samples)` (`what` names its samples in the log).
+/// Loads the scene, claims the outputs (the CSV, the plot and `extra`, file names in the output
+/// folder), and reads the reference or renders it with `render_reference(scene, integrator,
+/// samples)` (`what` names its samples in the log).
 fn setup(
     cli: &StudyCli,
     interrupt: &Interrupt,
+    extra: &[&str],
     what: fn(crate::integrator::Kind) -> &'static str,
     render_reference: impl FnOnce(
         &crate::scene::Scene,
@@ -255,6 +259,13 @@ fn setup(
     };
     let csv_out = claim(&csv)?;
     let plot_out = claim(&plot)?;
+    let extra = extra
+        .iter()
+        .map(|name| {
+            let path = cli.out.join(name);
+            claim(&path).map(|pending| (path, pending))
+        })
+        .collect::<Result<Vec<_>, String>>()?;
     let reference_pending = match cli.reference {
         Some(_) => None,
         None => Some(claim(&reference_out)?),
@@ -311,6 +322,7 @@ fn setup(
             csv_out,
             plot_out,
         },
+        extra,
     })
 }
 
@@ -334,7 +346,8 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         integrator,
         reference,
         outputs,
-    } = setup(cli, interrupt, study::counted, study::reference)?;
+        extra: _,
+    } = setup(cli, interrupt, &[], study::counted, study::reference)?;
     let counted = study::counted(integrator);
     let (w, h) = (scene.camera.width, scene.camera.height);
     let options = StudyOptions {
@@ -415,15 +428,21 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
 /// samples), so that some pixels can stop.
 const QUICK_ADAPTIVE_CAP: u32 = 64;
 
+/// The adaptive study's picture of where the best allocation puts its samples, in the output
+/// folder.
+const ALLOCATION_MAP: &str = "allocation.png";
+
 fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
     let Setup {
         scene,
         integrator,
         reference,
         outputs,
+        mut extra,
     } = setup(
         cli,
         interrupt,
+        &[ALLOCATION_MAP],
         |_| "samples per pixel",
         study::adaptive::reference,
     )?;
@@ -467,6 +486,14 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         study::adaptive::csv_text(&result).as_bytes(),
         &png,
     )?;
+    // A region without noise has no allocation: its pending file is dropped, unwritten.
+    if let (Some(map), Some((path, pending))) = (&result.allocation_map, extra.pop()) {
+        let bytes = encode_image(&path, map, ToneMap::Linear, 1.0).map_err(|e| e.to_string())?;
+        interrupt
+            .commit(pending, &bytes)
+            .map_err(|e| e.to_string())?;
+        eprintln!("study: wrote {}", shown(&path));
+    }
     outln!("MSE over the {what}; uniform and adaptive both with Sobol pixel samples");
     outln!(
         "{:<18} {:>9} {:>10} {:>11} {:>14} {:>7} {:>11} {:>7} {:>7}",

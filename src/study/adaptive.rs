@@ -93,6 +93,9 @@ pub struct AdaptiveStudy {
     pub bound_at_rate: Option<(f64, f64)>,
     /// Pixel samples in each of the [`VARIANCE_RENDERS`] renders the bound was measured from.
     pub variance_samples: u32,
+    /// Where the best allocation puts its samples, at the uniform runs' convergence (or at
+    /// one-over-n without a fitted rate): [`allocation_map`] of the study's region.
+    pub allocation_map: Option<Film>,
 }
 
 /// Renders, under seeds of their own, of [`AdaptiveStudyOptions::variance_samples`] uniform
@@ -178,6 +181,23 @@ impl PixelNoise {
         let n = self.variances.len() as f64;
         let share = (sum_power.ln() * (a + 1.0) - n.ln() * a - sum_var.ln()) / a;
         Some(share.exp().min(1.0))
+    }
+
+    /// Each pixel's samples under the allocation [`PixelNoise::allocation_bound`] finds at
+    /// convergence rate `a`, nᵢ ∝ σᵢ^(2/(a + 1)), over their mean: 1 in every pixel where all
+    /// are equally noisy, more where the noise is. `None` where the bound is.
+    pub fn allocation(&self, a: f64) -> Option<Vec<f64>> {
+        if a.is_nan() || a <= 0.0 {
+            return None;
+        }
+        let p = 1.0 / (a + 1.0);
+        let n: Vec<f64> = self
+            .variances
+            .iter()
+            .map(|v| v.iter().sum::<f64>().powf(p))
+            .collect();
+        let mean = n.iter().sum::<f64>() / n.len() as f64;
+        (mean > 0.0 && mean.is_finite()).then(|| n.iter().map(|x| x / mean).collect())
     }
 
     /// Σσᵢ² over the pixels.
@@ -393,13 +413,38 @@ pub fn run_adaptive_study(
         );
         adaptive.push(run);
     }
+    let allocation_map = noise
+        .as_ref()
+        .and_then(|n| n.allocation(rate.unwrap_or(1.0)))
+        .map(|shares| allocation_map(&shares, region.width));
     Ok(AdaptiveStudy {
         uniform,
         adaptive,
         bound,
         bound_at_rate,
         variance_samples,
+        allocation_map,
     })
+}
+
+/// The share of the pixels that [`allocation_map`] shows below full scale: the rest, a few
+/// pixels of outlying noise, would otherwise set the scale and leave every other pixel dark.
+const MAP_QUANTILE: f64 = 0.995;
+
+/// A picture of `allocation` (row-major, `width` wide, as [`PixelNoise::allocation`] gives
+/// it): each pixel's samples over those at the 99.5th percentile of the pixels, clamped to 1, in
+/// the colours of `--sample-map` (dark: few samples, yellow: the most).
+pub fn allocation_map(allocation: &[f64], width: u32) -> Film {
+    let mut sorted = allocation.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let at = ((sorted.len() as f64 * MAP_QUANTILE) as usize).min(sorted.len().saturating_sub(1));
+    let scale = sorted.get(at).copied().filter(|s| *s > 0.0).unwrap_or(1.0);
+    let shares: Vec<f32> = allocation
+        .iter()
+        .map(|x| (x / scale).min(1.0) as f32)
+        .collect();
+    let height = (allocation.len() as u32).checked_div(width).unwrap_or(0);
+    crate::metric::heat_map(width, height, &shares)
 }
 
 /// A ratio as the study prints it, `0.42×`, or `-` where there is none.
@@ -577,6 +622,41 @@ mod tests {
             .collect()
     }
 
+    /// The allocation itself: alike everywhere for equal noise; where half the pixels are twice
+    /// as noisy (σ), at one-over-n they take twice the samples of the others (nᵢ ∝ σᵢ), and
+    /// at a = 3 √2 times (nᵢ ∝ σᵢ^½); no allocation for no noise. Its map scales to the pixel
+    /// at the 99.5th percentile, so one outlying pixel does not darken the rest.
+    #[test]
+    fn the_allocation_follows_the_noise_and_its_map_ignores_an_outlier() {
+        let full = Region::full(4, 4);
+        let allocation = |amplitude: &dyn Fn(u32) -> f32, a: f64| {
+            PixelNoise::measure(&films(amplitude), full).and_then(|n| n.allocation(a))
+        };
+        let even = allocation(&|_| 0.1, 1.0).unwrap();
+        assert!(even.iter().all(|&x| (x - 1.0).abs() < 1e-9), "{even:?}");
+        for (a, ratio) in [(1.0, 2.0), (3.0, 2f64.sqrt())] {
+            let half = allocation(&|p| if p < 8 { 0.2 } else { 0.1 }, a).unwrap();
+            let mean = half.iter().sum::<f64>() / 16.0;
+            assert!((mean - 1.0).abs() < 1e-9, "{half:?}");
+            assert!(
+                (half[0] / half[15] - ratio).abs() < 1e-6,
+                "a = {a}: {half:?}"
+            );
+        }
+        assert_eq!(allocation(&|_| 0.0, 1.0), None);
+        assert_eq!(allocation(&|_| 0.1, 0.0), None);
+
+        // 400 pixels: a ramp of allocations, and one pixel a hundred times the largest.
+        let mut shares: Vec<f64> = (0..400).map(|i| 1.0 + f64::from(i) / 100.0).collect();
+        shares[7] = 500.0;
+        let map = allocation_map(&shares, 20);
+        assert_eq!((map.width, map.height), (20, 20));
+        let brightness = |i: u32| map.get(i % 20, i / 20).element_sum();
+        assert!(brightness(398) > brightness(200), "the ramp shows");
+        assert!(brightness(200) > brightness(0));
+        assert_eq!(brightness(7), brightness(399), "the outlier at full scale");
+    }
+
     /// The allocation bound of films whose noise is known: equal noise everywhere gives 1, noise
     /// in a quarter of the pixels (none elsewhere) gives ¼ at any rate of convergence (every
     /// sample goes there), and unequal noise everywhere gains less the faster pixels converge.
@@ -687,6 +767,7 @@ mod tests {
             bound: Some(0.25),
             bound_at_rate: Some((1.5, 0.3)),
             variance_samples: 16,
+            allocation_map: None,
         });
         assert_eq!(csv.lines().count(), 7);
         let columns = csv.lines().next().unwrap().split(',').count();
