@@ -164,20 +164,12 @@ impl PixelNoise {
     /// samples, its rounds and its estimate, and pixels converge at rates of their own (an edge
     /// slower than a smooth gradient). `None` for a noiseless region or `a` ≤ 0.
     pub fn allocation_bound(&self, a: f64) -> Option<f64> {
-        if a.is_nan() || a <= 0.0 {
-            return None;
-        }
-        let p = 1.0 / (a + 1.0);
+        let (p, powers) = self.allocation_powers(a)?;
         let sum_var = self.total();
         if sum_var.is_nan() || sum_var <= 0.0 {
             return None;
         }
-        let sum_power: f64 = self
-            .variances
-            .iter()
-            .map(|v| v.iter().sum::<f64>().powf(p))
-            .sum();
-        let sum_power = sum_power / chi_moment((self.renders - 1) as f64, p);
+        let sum_power = powers.sum::<f64>() / chi_moment((self.renders - 1) as f64, p);
         let n = self.variances.len() as f64;
         let share = (sum_power.ln() * (a + 1.0) - n.ln() * a - sum_var.ln()) / a;
         Some(share.exp().min(1.0))
@@ -187,17 +179,24 @@ impl PixelNoise {
     /// convergence rate `a`, nᵢ ∝ σᵢ^(2/(a + 1)), over their mean: 1 in every pixel where all
     /// are equally noisy, more where the noise is. `None` where the bound is.
     pub fn allocation(&self, a: f64) -> Option<Vec<f64>> {
+        let n: Vec<f64> = self.allocation_powers(a)?.1.collect();
+        let mean = n.iter().sum::<f64>() / n.len() as f64;
+        (mean > 0.0 && mean.is_finite()).then(|| n.iter().map(|x| x / mean).collect())
+    }
+
+    /// The exponent p = 1/(a + 1) of the best allocation at convergence rate `a`, nᵢ ∝ (σᵢ²)^p,
+    /// and each pixel's (σᵢ²)^p (its variance summed over RGB); `None` for `a` ≤ 0 or NaN.
+    fn allocation_powers(&self, a: f64) -> Option<(f64, impl Iterator<Item = f64> + '_)> {
         if a.is_nan() || a <= 0.0 {
             return None;
         }
         let p = 1.0 / (a + 1.0);
-        let n: Vec<f64> = self
-            .variances
-            .iter()
-            .map(|v| v.iter().sum::<f64>().powf(p))
-            .collect();
-        let mean = n.iter().sum::<f64>() / n.len() as f64;
-        (mean > 0.0 && mean.is_finite()).then(|| n.iter().map(|x| x / mean).collect())
+        Some((
+            p,
+            self.variances
+                .iter()
+                .map(move |v| v.iter().sum::<f64>().powf(p)),
+        ))
     }
 
     /// Σσᵢ² over the pixels.
