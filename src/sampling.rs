@@ -130,19 +130,31 @@ impl SobolPair {
 
     /// `p`, whose coordinates are Sobol coordinates.
     fn new(p: Vec2) -> SobolPair {
-        let bits = |v: f32| (v * SOBOL_ONE) as u64;
+        let bits = |v: f32| u64::from(sobol_bits(v));
         SobolPair(Self::SET | bits(p.x) << 23 | bits(p.y))
     }
 
     /// The point, exactly as it was given; `None` for [`SobolPair::NONE`].
     fn get(self) -> Option<Vec2> {
-        let coordinate = |bits: u64| (bits & 0x7f_ffff) as f32 / SOBOL_ONE;
+        let coordinate = |bits: u64| from_sobol_bits(bits as u32);
         (self.0 & Self::SET != 0).then(|| Vec2::new(coordinate(self.0 >> 23), coordinate(self.0)))
     }
 }
 
 /// 2²³: a Sobol coordinate here times this is a whole number below it.
 const SOBOL_ONE: f32 = (1u32 << 23) as f32;
+
+/// The 23 bits of `u`, a Sobol coordinate: `u · 2²³`, exactly.
+#[inline]
+fn sobol_bits(u: f32) -> u32 {
+    (u * SOBOL_ONE) as u32
+}
+
+/// The Sobol coordinate of the low 23 bits of `bits` ([`sobol_bits`]'s inverse), exactly.
+#[inline]
+fn from_sobol_bits(bits: u32) -> f32 {
+    (bits & 0x7f_ffff) as f32 / SOBOL_ONE
+}
 
 impl SampleKey {
     /// A key for camera sample `sample` of `spp` that holds no hash: for a sample whose tracer
@@ -562,7 +574,7 @@ impl Across {
 /// a pixel than the shift modulo 1; docs/adaptive.md). Exact: the conversions only move bits.
 #[inline]
 fn digital_shift(u: f32, shift: u32) -> f32 {
-    (((u * SOBOL_ONE) as u32) ^ (shift & 0x7f_ffff)) as f32 / SOBOL_ONE
+    from_sobol_bits(sobol_bits(u) ^ shift)
 }
 
 /// How a render places each pixel's camera samples, as [`SampleKey::light_set`] needs it: the
