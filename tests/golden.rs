@@ -49,11 +49,14 @@ fn displayed_with(scene: &Scene, trace: TraceOptions) -> (Film, u64) {
         },
     )
     .unwrap();
-    (quantised(&out.film, scene.exposure), out.counts.total())
+    (quantised(&out.film, scene, 1.0), out.counts.total())
 }
 
-fn quantised(film: &Film, exposure: f32) -> Film {
-    let bytes = to_rgb8(film, ToneMap::Linear, exposure);
+/// The film as the `render` command writes it (the scene's default tone map and exposure), with
+/// its radiance scaled by `brightness`.
+fn quantised(film: &Film, scene: &Scene, brightness: f32) -> Film {
+    let map = ToneMap::chosen(None, scene.tone_map);
+    let bytes = to_rgb8(film, map, scene.display_exposure(map) * brightness);
     let pixels = bytes
         .chunks_exact(3)
         .map(|c| Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32) / 255.0)
@@ -133,7 +136,7 @@ fn tolerances_catch_shifts_flips_and_brightness_changes() {
         )
         .unwrap()
         .film;
-        let reference = quantised(&raw, scene.exposure);
+        let reference = quantised(&raw, &scene, 1.0);
         let (w, h) = (reference.width, reference.height);
 
         let mut shifted = reference.clone();
@@ -148,7 +151,7 @@ fn tolerances_catch_shifts_flips_and_brightness_changes() {
         );
 
         for factor in [1.02f32, 0.98] {
-            let scaled = quantised(&raw, scene.exposure * factor);
+            let scaled = quantised(&raw, &scene, factor);
             if scaled.pixels != reference.pixels {
                 assert!(
                     fails(&reference, &scaled),

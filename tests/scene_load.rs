@@ -343,7 +343,7 @@ fn bundled_scenes_load_cleanly() {
 }
 
 #[test]
-fn cgr_lights_do_not_fall_off_and_the_scene_has_an_ambient_light() {
+fn cgr_lights_do_not_fall_off_and_the_background_is_the_ambient_light() {
     let cgr = |scene: &str| {
         load_json(&format!(
             r#"{{ "rendermode": "phong", "camera": {{ "width": 4, "height": 4, "fov": 30,
@@ -364,16 +364,21 @@ fn cgr_lights_do_not_fall_off_and_the_scene_has_an_ambient_light() {
             kq: 0.2
         }
     );
-    assert_eq!(s.ambient, Vec3::splat(raytracer::scene::load::CGR_AMBIENT));
+    // No background: black, and so no ambient light.
+    assert_eq!(s.ambient, Vec3::ZERO);
     assert_eq!(s.materials[0].ka, 0.5);
     assert_eq!(s.reflection, Reflection::Blended);
+    assert_eq!(s.tone_map, Some(ToneMap::Cgr));
     // The exposure is kept for the `exposure` tone map only.
     assert_eq!(s.exposure, 0.1);
     assert_eq!(s.display_exposure(ToneMap::Linear), 1.0);
     assert_eq!(s.display_exposure(ToneMap::Exposure), 0.1);
 
-    // A file's own ambient light wins: a scene key, or lights of type `ambient` (summed).
-    let s = cgr(r#"{ "ambientlight": [0.5, 0.4, 0.3] }"#);
+    // The background colour is the ambient light (a negative channel gives none)...
+    let s = cgr(r#"{ "backgroundcolor": [0.25, -0.5, 0.1] }"#);
+    assert_eq!(s.ambient, Vec3::new(0.25, 0.0, 0.1));
+    // ... unless the file gives its own: a scene key, or lights of type `ambient` (summed).
+    let s = cgr(r#"{ "backgroundcolor": [0.25, 0.25, 0.25], "ambientlight": [0.5, 0.4, 0.3] }"#);
     assert_eq!(s.ambient, Vec3::new(0.5, 0.4, 0.3));
     let s = cgr(
         r#"{ "lightsources": [ { "type": "ambient", "intensity": 0.1 },

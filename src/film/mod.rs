@@ -5,6 +5,7 @@
 //! factor and then applies one of the [`ToneMap`] curves; the default, [`ToneMap::Linear`], is
 //! the coursework's official mapping (value × 255, clamped, no gamma).
 
+pub mod cgr;
 pub mod rect;
 pub mod sum;
 
@@ -103,15 +104,19 @@ pub enum ToneMap {
     /// It is what a CGR camera's `exposure` feeds in the one coursework renderer whose code
     /// uses it (`docs/scene-format.md`, CGR conventions).
     Exposure,
+    /// The CGR course's display transform ([`cgr::display`]): a logarithmic curve on
+    /// luminance with colour carried by each channel's ratio to it. The default for CGR files.
+    Cgr,
 }
 
 impl ToneMap {
     /// All tone maps, in the order they are listed in messages.
-    pub const ALL: [ToneMap; 4] = [
+    pub const ALL: [ToneMap; 5] = [
         ToneMap::Linear,
         ToneMap::Srgb,
         ToneMap::Reinhard,
         ToneMap::Exposure,
+        ToneMap::Cgr,
     ];
 
     /// The lower-case name used by [`FromStr`] and [`Display`](fmt::Display).
@@ -121,6 +126,7 @@ impl ToneMap {
             ToneMap::Srgb => "srgb",
             ToneMap::Reinhard => "reinhard",
             ToneMap::Exposure => "exposure",
+            ToneMap::Cgr => "cgr",
         }
     }
 
@@ -138,13 +144,13 @@ impl fmt::Display for ToneMap {
 
 /// Error from parsing a [`ToneMap`] name.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown tone map '{0}' (expected one of: linear, srgb, reinhard, exposure)")]
+#[error("unknown tone map '{0}' (expected one of: linear, srgb, reinhard, exposure, cgr)")]
 pub struct ParseToneMapError(pub String);
 
 impl FromStr for ToneMap {
     type Err = ParseToneMapError;
 
-    /// Parses `linear`, `srgb`, `reinhard` or `exposure` (ASCII case-insensitive, surrounding spaces ignored).
+    /// Parses `linear`, `srgb`, `reinhard`, `exposure` or `cgr` (ASCII case-insensitive, surrounding spaces ignored).
     fn from_str(s: &str) -> Result<ToneMap, ParseToneMapError> {
         let t = s.trim();
         ToneMap::ALL
@@ -176,6 +182,8 @@ fn tonemap_channel(x: f32, map: ToneMap, exposure: f32) -> f32 {
         ToneMap::Srgb => srgb_encode(x.min(1.0)),
         ToneMap::Reinhard => srgb_encode(x / (1.0 + x)),
         ToneMap::Exposure => -(-x).exp_m1(),
+        // A channel on its own is a grey; `tonemap` maps the pixel's channels together.
+        ToneMap::Cgr => cgr::display(Vec3::splat(x)).x,
     }
     .clamp(0.0, 1.0)
 }
@@ -184,9 +192,14 @@ fn tonemap_channel(x: f32, map: ToneMap, exposure: f32) -> f32 {
 /// Linear: clamp(x,0,1) (the coursework's official mapping: value × 255, clamped, no gamma);
 /// Srgb: the sRGB transfer curve (IEC 61966-2-1) of clamp(x,0,1);
 /// Reinhard: x/(1+x) per channel, then the sRGB curve;
-/// Exposure: 1 − exp(−x) per channel, no gamma.
-/// Non-finite or negative input maps to 0 (per channel, after the exposure scaling).
+/// Exposure: 1 − exp(−x) per channel, no gamma;
+/// Cgr: the course's transform of the whole pixel ([`cgr::display`]).
+/// Non-finite or negative input maps to 0 (per channel, after the exposure scaling; for Cgr, an
+/// infinite channel makes the pixel black).
 pub fn tonemap(c: Vec3, map: ToneMap, exposure: f32) -> Vec3 {
+    if map == ToneMap::Cgr {
+        return cgr::display(c * exposure);
+    }
     Vec3::new(
         tonemap_channel(c.x, map, exposure),
         tonemap_channel(c.y, map, exposure),
@@ -223,6 +236,15 @@ pub fn to_rgb8(film: &Film, map: ToneMap, exposure: f32) -> Vec<u8> {
         ToneMap::Srgb => bytes(film, with(ToneMap::Srgb)),
         ToneMap::Reinhard => bytes(film, with(ToneMap::Reinhard)),
         ToneMap::Exposure => bytes(film, with(ToneMap::Exposure)),
+        ToneMap::Cgr => {
+            let bias = byte_bias(map);
+            let mut out = vec![0u8; film.pixels.len() * 3];
+            for (rgb, &p) in out.chunks_exact_mut(3).zip(&film.pixels) {
+                let d = cgr::display(p * exposure);
+                rgb.copy_from_slice(&[to_byte(d.x, bias), to_byte(d.y, bias), to_byte(d.z, bias)]);
+            }
+            out
+        }
     }
 }
 

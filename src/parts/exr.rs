@@ -14,7 +14,7 @@
 //! and its attributes (in the header): `raytracer.fingerprint` (16 hex digits, see
 //! [`super::fingerprint`]), `raytracer.spp` (the whole render's samples per pixel),
 //! `raytracer.samples` (`A..B`, the samples this part holds) and `raytracer.exposure` (the
-//! scene's display exposure for each tone map, as `linear=… srgb=… reinhard=… exposure=…`);
+//! scene's display exposure for each tone map, as `linear=… srgb=… reinhard=… exposure=… cgr=…`);
 //! `raytracer.adaptive` (f32, only in tiles of adaptive renders: the noise threshold; each
 //! pixel's `sum.count` is then the samples it took, 1 to all); `raytracer.tonemap` (text, only
 //! when the scene asks for a tone map: its name, which a merge then applies by default).
@@ -343,8 +343,8 @@ fn parse_range(s: &str) -> Option<std::ops::Range<u32>> {
     Some(a.trim().parse().ok()?..b.trim().parse().ok()?)
 }
 
-fn parse_exposure(s: &str) -> Option<[f32; 4]> {
-    let mut out = [f32::NAN; 4];
+fn parse_exposure(s: &str) -> Option<[f32; ToneMap::ALL.len()]> {
+    let mut out = [f32::NAN; ToneMap::ALL.len()];
     for item in s.split_whitespace() {
         let (name, value) = item.split_once('=')?;
         let map: ToneMap = name.parse().ok()?;
@@ -378,7 +378,7 @@ mod tests {
             samples: 2..5,
             spp: 9,
             fingerprint: 0x0123_4567_89ab_cdef,
-            exposure: [1.0, 1.0, 1.0, 0.5],
+            exposure: [1.0, 1.0, 1.0, 0.5, 1.0],
             tone_map: None,
             sums,
             counts: vec![3; 6],

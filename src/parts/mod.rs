@@ -33,7 +33,7 @@ pub struct Part {
     pub fingerprint: u64,
     /// The scene's display exposure for each tone map, in [`ToneMap::ALL`]'s order (see
     /// [`Scene::display_exposure`]): a merge maps tones as the render would.
-    pub exposure: [f32; 4],
+    pub exposure: [f32; ToneMap::ALL.len()],
     /// The tone map the scene asks for ([`Scene::tone_map`]).
     pub tone_map: Option<ToneMap>,
     /// The sums, row-major over `window`.
@@ -83,7 +83,7 @@ impl Part {
 }
 
 /// The display exposure of `scene` for each tone map, in [`ToneMap::ALL`]'s order.
-pub fn display_exposures(scene: &Scene) -> [f32; 4] {
+pub fn display_exposures(scene: &Scene) -> [f32; ToneMap::ALL.len()] {
     ToneMap::ALL.map(|m| scene.display_exposure(m))
 }
 

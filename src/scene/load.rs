@@ -62,11 +62,6 @@ pub const DEFAULT_MAX_MESH_BYTES: u64 = 2 << 30;
 pub const DEFAULT_ETA: f32 = 1.5;
 /// `nbounces` when a file has none.
 pub const DEFAULT_NBOUNCES: u32 = 3;
-/// Ambient light of a CGR file that gives none. The students' renders of the course's test
-/// scenes all show an ambient term (their code adds 0.125, 0.2 and 0.45 times the base colour);
-/// 0.2 is the value that brings ours closest to all three (`docs/scene-format.md`, CGR
-/// conventions).
-pub const CGR_AMBIENT: f32 = 0.2;
 
 /// How to load a scene.
 #[derive(Debug, Clone)]
@@ -529,14 +524,19 @@ impl<'o> Loader<'o> {
             self.warn(&node, message);
         }
         let has_transmissive = self.materials.iter().any(Material::is_transmissive);
-        let (ambient, reflection) = match variant {
+        // The CGR conventions (`docs/scene-format.md`, "CGR conventions"): the background is
+        // the ambient light, mirrors blend, and the course's display transform.
+        let (ambient, reflection, tone_map) = match variant {
             Variant::Cgr => (
-                self.ambient.unwrap_or(Vec3::splat(CGR_AMBIENT)),
+                self.ambient.unwrap_or(background.max(Vec3::ZERO)),
                 Reflection::Blended,
+                tone_map.or(Some(ToneMap::Cgr)),
             ),
-            Variant::V2019 | Variant::V2021 => {
-                (self.ambient.unwrap_or(Vec3::ZERO), Reflection::Added)
-            }
+            Variant::V2019 | Variant::V2021 => (
+                self.ambient.unwrap_or(Vec3::ZERO),
+                Reflection::Added,
+                tone_map,
+            ),
         };
         Ok(Scene {
             variant,

@@ -71,8 +71,9 @@ pub struct Scene {
     /// Shadow rays per shading point for every area light, if the file sets them for all at once
     /// (`lightsample` and other spellings).
     pub light_samples: Option<u32>,
-    /// The tone map the file asks for (`"use_tone_mapping": true`: [`ToneMap::Reinhard`]), which
-    /// 8-bit output takes unless told otherwise (`--tonemap`).
+    /// The tone map the file asks for (`"use_tone_mapping": true`: [`ToneMap::Reinhard`]; a CGR
+    /// file otherwise [`ToneMap::Cgr`]), which 8-bit output takes unless told otherwise
+    /// (`--tonemap`).
     pub tone_map: Option<ToneMap>,
     pub lights: Vec<Light>,
     /// Every shape's primitives, with the meshes their triangles belong to.
@@ -90,9 +91,8 @@ pub struct Scene {
 
 impl Scene {
     /// The scale applied to radiance before the tone map `map`: the file's exposure, except in
-    /// CGR files, whose `exposure` is not a radiance scale (the course's test scenes, rendered
-    /// by students, show their background and lights unscaled) and feeds only
-    /// [`ToneMap::Exposure`].
+    /// CGR files, whose `exposure` is not a radiance scale (the course's renders of its test
+    /// scenes show none) and feeds only [`ToneMap::Exposure`].
     pub fn display_exposure(&self, map: ToneMap) -> f32 {
         match (self.variant, map) {
             (Variant::Cgr, m) if m != ToneMap::Exposure => 1.0,
