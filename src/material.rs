@@ -8,7 +8,7 @@
 //! The CGR spellings `isreflective`/`reflectivity` and `isrefractive`/`refractiveindex` map onto
 //! `kr`, `kt` and `eta` (see `docs/scene-format.md`). A texture replaces the diffuse colour.
 //! `ka` scales the scene's ambient light (CGR files have one; see [`Reflection`] for the other
-//! way CGR files differ).
+//! way CGR files differ), and [`Shares`] keeps every combination of weights from making light.
 
 use crate::math::Vec3;
 
@@ -127,7 +127,65 @@ pub fn roughness_exponent(alpha: f32) -> f32 {
     (2.0 / (alpha * alpha) - 2.0).max(0.0)
 }
 
+/// How a material shares the light that reaches it between its mirror, its glass and its own
+/// shading, so that together they never return more than arrives: the mirror takes `kr` (at most
+/// all), the glass `kt` of what the mirror leaves, and the surface's own shading the rest
+/// (`docs/scene-format.md`, "Energy"). Both integrators use these shares.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Shares {
+    /// Weight of the mirror reflection.
+    pub mirror: f32,
+    /// Weight of the dielectric interface, split by the Fresnel equations between reflection and
+    /// refraction.
+    pub glass: f32,
+    /// What is left for the surface's own (ambient, diffuse and highlight) terms.
+    pub own: f32,
+}
+
+/// The weights of a shading point's own diffuse terms, each reflecting at most a `budget` of
+/// what arrives: the ambient term's `ka·c` and the diffuse term's `kd·c`, scaled down (keeping
+/// their hue) to a largest channel of `budget`. The highlight is not among them: it stands for
+/// the mirror image of a point light, which no reflected ray can see.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OwnTerms {
+    /// `ka · c`, to multiply by the ambient light.
+    pub ambient: Vec3,
+    /// `kd · c`, to multiply by a light's diffuse power and `n · l`.
+    pub diffuse: Vec3,
+}
+
+/// `v` scaled so that its largest channel is at most `budget` (zero for a budget of zero or less).
+fn capped(v: Vec3, budget: f32) -> Vec3 {
+    let largest = v.max_element();
+    if largest <= budget {
+        v
+    } else if budget > 0.0 {
+        v * (budget / largest)
+    } else {
+        Vec3::ZERO
+    }
+}
+
 impl Material {
+    /// The material's [`Shares`].
+    pub fn shares(&self) -> Shares {
+        let mirror = self.kr.clamp(0.0, 1.0);
+        let glass = self.kt.clamp(0.0, 1.0 - mirror);
+        Shares {
+            mirror,
+            glass,
+            own: (1.0 - mirror - glass).max(0.0),
+        }
+    }
+
+    /// The [`OwnTerms`] at a point of base colour `base` (texture or diffuse colour).
+    pub fn own_terms(&self, base: Vec3, budget: f32) -> OwnTerms {
+        OwnTerms {
+            ambient: capped(self.ka * base, budget),
+            diffuse: capped(self.kd * base, budget),
+        }
+    }
+
     /// Whether shadow rays pass (attenuated) through this material.
     pub fn is_transmissive(&self) -> bool {
         self.kt > 0.0
@@ -199,14 +257,16 @@ mod tests {
     }
 }
 
-/// How a mirror's reflection combines with the light its surface shades itself.
+/// How a mirror's and a glass's light combines with the light a surface shades itself (its
+/// [`Shares`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Reflection {
-    /// `local + kr · reflected`: what the official 2021–23 reference render shows (its mirror
-    /// sphere keeps its highlight and diffuse colour).
+    /// `own + mirror · reflected + …`, the own ambient and diffuse weights capped at the share
+    /// the mirror and glass leave: what the official 2021–23 reference render shows (its walls
+    /// keep their diffuse colour beside their reflection).
     #[default]
     Added,
-    /// `(1 − kr) · local + kr · reflected`: a `reflectivity` 1 mirror shows only what it
-    /// reflects, as every available CGR student render of the course's test scenes does.
+    /// `own share · own + mirror · reflected + …`: a `reflectivity` 1 mirror shows only what it
+    /// reflects, as the CGR course's renders of its test scenes show.
     Blended,
 }

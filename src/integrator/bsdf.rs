@@ -30,7 +30,7 @@
 //!
 //! `ka` and the scene's ambient light belong to Whitted shading and are not used here.
 
-use crate::material::{highlight, Material};
+use crate::material::{highlight, Material, Shares};
 use crate::math::{fresnel_dielectric, local_to_world, reflect, refract, Vec2, Vec3};
 use crate::sampling::blinn_phong_half_vector;
 
@@ -80,13 +80,6 @@ pub struct Bsdf {
     eta: f32,
 }
 
-/// The weights `(mirror, glass, smooth)` of a material's lobes: see the module docs.
-pub fn lobe_weights(m: &Material) -> (f32, f32, f32) {
-    let mirror = m.kr.clamp(0.0, 1.0);
-    let glass = m.kt.clamp(0.0, 1.0 - mirror);
-    (mirror, glass, (1.0 - mirror - glass).max(0.0))
-}
-
 /// Giesen's normalisation of a Blinn-Phong lobe of exponent `e ≥ 0`.
 pub fn blinn_phong_norm(e: f32) -> f32 {
     (e + 2.0) * (e + 4.0) / (8.0 * PI * ((-e / 2.0).exp2() + e))
@@ -97,7 +90,11 @@ impl Bsdf {
     /// `ng` (the geometric normal, turned towards the ray's origin) at a point with shading
     /// normal `ns` (turned the same way); `front` says whether that side is the outside.
     pub fn new(material: &Material, base: Vec3, ns: Vec3, ng: Vec3, front: bool) -> Bsdf {
-        let (mirror, glass, smooth) = lobe_weights(material);
+        let Shares {
+            mirror,
+            glass,
+            own: smooth,
+        } = material.shares();
         let mut diffuse = (material.kd * base).max(Vec3::ZERO);
         let mut glossy = (material.ks * material.specular).max(Vec3::ZERO);
         let peak = (diffuse + glossy).max_element();

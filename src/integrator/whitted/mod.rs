@@ -532,14 +532,20 @@ impl<'a> Whitted<'a> {
             None => material.diffuse,
         };
 
+        // What the surface's own terms may reflect: blended (CGR) files scale them by the share
+        // the mirror and glass leave; the others add the mirror and glass to them, so each term
+        // is capped at that share instead (`docs/scene-format.md`, "Energy").
+        let shares = material.shares();
+        let (own_scale, budget) = match scene.reflection {
+            Reflection::Blended => (shares.own, 1.0),
+            Reflection::Added => (1.0, shares.own),
+        };
+        let own = material.own_terms(base, budget);
         let mut color = if scene.ambient == Vec3::ZERO {
             Vec3::ZERO
         } else {
-            material.ka * scene.ambient * base
+            own.ambient * scene.ambient
         };
-        if material.emission != Vec3::ZERO {
-            color += material.emission;
-        }
         let spawn = hit.spawn_points();
         let shading = Shading {
             point: hit.point,
@@ -547,12 +553,18 @@ impl<'a> Whitted<'a> {
             n,
             ns,
             v,
-            kd_base: material.kd * base,
+            kd_base: own.diffuse,
             ks_specular: material.ks * material.specular,
             has_highlight: material.ks > 0.0,
             exponent: material.exponent,
         };
-        for (li, light) in scene.lights.iter().enumerate() {
+        // A surface that shows only what it reflects and transmits needs no shadow rays.
+        let lights = if own_scale > 0.0 {
+            &scene.lights[..]
+        } else {
+            &[]
+        };
+        for (li, light) in lights.iter().enumerate() {
             let (count, method) = self.options.light_plan(light);
             if count == 1 {
                 // One shadow ray, towards the light's centre (`sample_one`): no point is drawn.
@@ -570,9 +582,11 @@ impl<'a> Whitted<'a> {
             }
         }
 
-        if scene.reflection == Reflection::Blended && material.kt == 0.0 && material.kr > 0.0 {
-            // The mirror shows what it reflects in place of its own shading.
-            color *= 1.0 - material.kr.min(1.0);
+        if own_scale < 1.0 {
+            color *= own_scale;
+        }
+        if material.emission != Vec3::ZERO {
+            color += material.emission;
         }
         if depth >= scene.nbounces.min(self.max_depth) {
             return color;
@@ -592,9 +606,9 @@ impl<'a> Whitted<'a> {
             draws: self.draws,
             weight,
         };
-        let mut reflect_weight = material.kr;
+        let mut reflect_weight = shares.mirror;
         let mut refracted = None;
-        if material.kt > 0.0 {
+        if shares.glass > 0.0 {
             let eta = if front {
                 1.0 / material.eta
             } else {
@@ -602,8 +616,8 @@ impl<'a> Whitted<'a> {
             };
             let cos_i = -ray.dir.dot(n);
             let f = fresnel_dielectric(cos_i, eta);
-            reflect_weight += material.kt * f;
-            let transmit = material.kt * (1.0 - f);
+            reflect_weight += shares.glass * f;
+            let transmit = shares.glass * (1.0 - f);
             if transmit > 0.0 && self.worth_tracing(weight * transmit) {
                 if let Some(t) = refract(ray.dir, n, eta) {
                     refracted = Some(leaving.branch(t, 2, transmit));
@@ -1077,7 +1091,7 @@ mod tests {
           {"type": "sphere", "center": [0.6, 0.8, -0.6], "radius": 0.8,
            "material": {"kd": 0, "ks": 0.2, "specularexponent": 200,
                         "diffusecolor": [1, 1, 1], "specularcolor": [1, 1, 1],
-                        "isreflective": true, "reflectivity": 1.0}},
+                        "isreflective": true, "reflectivity": 0.9}},
           {"type": "sphere", "center": [1.4, 0.4, 1.2], "radius": 0.4,
            "material": {"kd": 0.7, "ks": 0.3, "specularexponent": 40,
                         "diffusecolor": [0.8, 0.3, 0.2], "specularcolor": [1, 1, 1]}}
