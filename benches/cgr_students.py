@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """The course's CGR test scenes rendered by this program beside three students' renders of them.
 
-    cargo build --release && python3 benches/cgr_students.py docs/images/cgr-test-scenes.png
+    cargo build --release && python3 benches/cgr_students.py sheet.png
 
 Needs Pillow and ../shared/coursework/corpus. Prints the mean absolute difference (8-bit, all
 channels) between our render and each student's, and writes a contact sheet: one row per scene,
-the students' renders then ours. The same distances are asserted by tests/cgr_conventions.rs.
+the students' renders then ours. tests/cgr_conventions.rs asserts them against the course picture's.
 """
 import json, subprocess, sys, tempfile
 from pathlib import Path
