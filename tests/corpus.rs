@@ -1,12 +1,15 @@
-//! Every real scene file of the coursework corpus (`../shared/coursework/corpus/`) is loaded and
-//! rendered at 64 pixels wide, 1 sample per pixel, at most 2 bounces. None may panic; each either
-//! renders or fails with a clean error. Of the scenes whose assets are all in the corpus, at least
-//! 95% must render, and a scene whose assets are missing must fail by naming the missing file.
+//! Every real scene file of the two coursework corpora (`../shared/coursework/corpus/`, 219 files,
+//! and `../shared/coursework/corpus2/`, 48 more from other repositories) is loaded and rendered at
+//! 64 pixels wide, 1 sample per pixel, at most 2 bounces. None may panic; each either renders or
+//! fails with a clean error that names the file. Of the scenes whose assets are all in the corpus,
+//! at least 95% of the first corpus's (two use a schema of their own) and all of the second's must
+//! render, and a scene whose assets are missing must fail by naming the missing file.
 //!
 //! The test prints each scene's warnings and compares them, and whether it rendered, with
-//! `tests/corpus_expected.tsv`: a scene that stops rendering, or gains a warning the file does not
-//! list, fails the test. A scene that loses one, or starts rendering, is reported; rewrite the list
-//! with `RAYTRACER_UPDATE_CORPUS=1 cargo test --release --test corpus` after looking at the change.
+//! `tests/corpus_expected.tsv` and `tests/corpus2_expected.tsv`: a scene that stops rendering, or
+//! gains a warning the file does not list, fails the test. A scene that loses one, or starts
+//! rendering, is reported; rewrite the lists with
+//! `RAYTRACER_UPDATE_CORPUS=1 cargo test --release --test corpus` after looking at the change.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -25,6 +28,59 @@ fn corpus_dir() -> Option<PathBuf> {
         None => Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/coursework/corpus"),
     };
     dir.join("MANIFEST.tsv").is_file().then_some(dir)
+}
+
+/// The second corpus, beside the first.
+fn corpus2_dir() -> Option<PathBuf> {
+    let dir = corpus_dir()?.join("../corpus2");
+    dir.join("MANIFEST.tsv").is_file().then_some(dir)
+}
+
+/// One of the two corpora: where it is, its scenes, and what the test expects of them.
+struct Corpus {
+    dir: PathBuf,
+    entries: Vec<Entry>,
+    /// The list of expected outcomes, relative to the repository.
+    expected: &'static str,
+    /// Percentage of the scenes with all their assets that must render.
+    must_render: usize,
+}
+
+/// Both corpora that are next to the repository.
+fn corpora() -> Vec<Corpus> {
+    let mut out = Vec::new();
+    if let Some(dir) = corpus_dir() {
+        let entries = read_manifest(&dir);
+        assert!(
+            entries.len() >= 200,
+            "manifest lists {} scenes",
+            entries.len()
+        );
+        out.push(Corpus {
+            dir,
+            entries,
+            expected: "tests/corpus_expected.tsv",
+            must_render: 95,
+        });
+    }
+    if let Some(dir) = corpus2_dir() {
+        let entries = read_manifest2(&dir);
+        assert!(
+            entries.len() >= 48,
+            "manifest lists {} scenes",
+            entries.len()
+        );
+        out.push(Corpus {
+            dir,
+            entries,
+            expected: "tests/corpus2_expected.tsv",
+            must_render: 100,
+        });
+    }
+    if out.is_empty() {
+        eprintln!("corpus not found next to the repository; set RAYTRACER_CORPUS to run this test");
+    }
+    out
 }
 
 /// One scene row of the manifest: the file and its asset references (`ref -> assets/…` or a
@@ -53,6 +109,33 @@ fn read_manifest(dir: &Path) -> Vec<Entry> {
         }
         out.push(Entry {
             file: cols[0].to_string(),
+            refs,
+        });
+    }
+    out
+}
+
+/// The second corpus's manifest: scenes under `scenes/`, and an `assets` column of
+/// `ref -> assets/… (how it was matched)` or `ref -> why it is absent`, separated by `;`.
+fn read_manifest2(dir: &Path) -> Vec<Entry> {
+    let text = std::fs::read_to_string(dir.join("MANIFEST.tsv")).expect("manifest readable");
+    let mut out = Vec::new();
+    for line in text.lines().skip(1) {
+        let cols: Vec<&str> = line.split('\t').collect();
+        if cols.len() < 6 || !cols[0].ends_with(".json") {
+            continue;
+        }
+        let refs = cols[5]
+            .split(';')
+            .filter_map(|part| part.split_once("->"))
+            .map(|(r, a)| {
+                let a = a.trim();
+                let stored = a.split(" (").next().unwrap_or(a);
+                (r.trim().to_string(), stored.to_string())
+            })
+            .collect();
+        out.push(Entry {
+            file: format!("scenes/{}", cols[0]),
             refs,
         });
     }
@@ -104,16 +187,14 @@ fn load_entry(dir: &Path, e: &Entry, width: u32) -> Result<Scene, SceneError> {
 
 #[test]
 fn every_corpus_scene_renders_or_fails_cleanly() {
-    let Some(dir) = corpus_dir() else {
-        eprintln!("corpus not found next to the repository; set RAYTRACER_CORPUS to run this test");
-        return;
-    };
-    let entries = read_manifest(&dir);
-    assert!(
-        entries.len() >= 200,
-        "manifest lists {} scenes",
-        entries.len()
-    );
+    for corpus in corpora() {
+        check(&corpus);
+    }
+}
+
+/// The rules of the module's doc for one corpus.
+fn check(corpus: &Corpus) {
+    let (dir, entries) = (&corpus.dir, &corpus.entries);
 
     let mut rendered = Vec::new();
     let mut failed: BTreeMap<String, (bool, String)> = BTreeMap::new();
@@ -121,13 +202,13 @@ fn every_corpus_scene_renders_or_fails_cleanly() {
     let mut warnings = 0usize;
     let mut complete = 0usize;
     let mut outcomes: BTreeMap<String, Outcome> = BTreeMap::new();
-    for e in &entries {
+    for e in entries {
         let assets_present = e.refs.iter().all(|(_, a)| a.starts_with("assets/"));
         if assets_present {
             complete += 1;
         }
         let result = catch_unwind(AssertUnwindSafe(|| {
-            let scene = load_entry(&dir, e, 64)?;
+            let scene = load_entry(dir, e, 64)?;
             let out = render(
                 &scene,
                 &RenderOptions {
@@ -174,7 +255,8 @@ fn every_corpus_scene_renders_or_fails_cleanly() {
 
     let complete_failed: Vec<_> = failed.iter().filter(|(_, (p, _))| *p).collect();
     println!(
-        "corpus: {} scenes, {} rendered, {} clean errors ({} with all assets present), {} panics, {} warnings",
+        "{}: {} scenes, {} rendered, {} clean errors ({} with all assets present), {} panics, {} warnings",
+        dir.display(),
         entries.len(),
         rendered.len(),
         failed.len(),
@@ -189,11 +271,11 @@ fn every_corpus_scene_renders_or_fails_cleanly() {
         );
     }
     assert!(panicked.is_empty(), "panicked: {panicked:?}");
-    compare_with_expected(&outcomes);
+    compare_with_expected(&outcomes, corpus.expected);
     let rendered_complete = complete - complete_failed.len();
     println!("corpus: {rendered_complete} of {complete} scenes with all assets present rendered");
     assert!(
-        rendered_complete * 100 >= complete * 95,
+        rendered_complete * 100 >= complete * corpus.must_render,
         "only {rendered_complete} of {complete} scenes with all assets rendered"
     );
     for (file, (present, msg)) in &failed {
@@ -215,12 +297,10 @@ enum Outcome {
     Failed,
 }
 
-const EXPECTED: &str = "tests/corpus_expected.tsv";
-
 /// The expected outcomes: `scene<TAB>rendered`, `scene<TAB>error`, and one
 /// `scene<TAB>warning<TAB>json.path: message` line per warning.
-fn read_expected() -> BTreeMap<String, (bool, BTreeSet<String>)> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(EXPECTED);
+fn read_expected(expected: &str) -> BTreeMap<String, (bool, BTreeSet<String>)> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(expected);
     let text = std::fs::read_to_string(&path).unwrap_or_default();
     let mut out: BTreeMap<String, (bool, BTreeSet<String>)> = BTreeMap::new();
     for line in text
@@ -229,7 +309,7 @@ fn read_expected() -> BTreeMap<String, (bool, BTreeSet<String>)> {
     {
         let mut cols = line.splitn(3, '\t');
         let (Some(file), Some(kind)) = (cols.next(), cols.next()) else {
-            panic!("{EXPECTED}: bad line {line:?}");
+            panic!("{expected}: bad line {line:?}");
         };
         let entry = out.entry(file.to_string()).or_default();
         match (kind, cols.next()) {
@@ -238,13 +318,13 @@ fn read_expected() -> BTreeMap<String, (bool, BTreeSet<String>)> {
             ("warning", Some(w)) => {
                 entry.1.insert(w.to_string());
             }
-            _ => panic!("{EXPECTED}: bad line {line:?}"),
+            _ => panic!("{expected}: bad line {line:?}"),
         }
     }
     out
 }
 
-fn write_expected(outcomes: &BTreeMap<String, Outcome>) {
+fn write_expected(outcomes: &BTreeMap<String, Outcome>, expected: &str) {
     let mut text = String::from(
         "# What tests/corpus.rs expects of each corpus scene: rendered or error, and each warning\n\
          # (json.path: message). Rewritten by RAYTRACER_UPDATE_CORPUS=1.\n",
@@ -261,19 +341,19 @@ fn write_expected(outcomes: &BTreeMap<String, Outcome>) {
             }
         }
     }
-    std::fs::write(Path::new(env!("CARGO_MANIFEST_DIR")).join(EXPECTED), text)
+    std::fs::write(Path::new(env!("CARGO_MANIFEST_DIR")).join(expected), text)
         .expect("expected outcomes written");
 }
 
 /// Prints each scene's warnings, and fails on a scene that stopped rendering or gained a
-/// warning since `tests/corpus_expected.tsv` was written.
-fn compare_with_expected(outcomes: &BTreeMap<String, Outcome>) {
+/// warning since `expected` (its list of outcomes) was written.
+fn compare_with_expected(outcomes: &BTreeMap<String, Outcome>, expected_file: &str) {
     if std::env::var_os("RAYTRACER_UPDATE_CORPUS").is_some_and(|v| v == "1") {
-        write_expected(outcomes);
-        println!("corpus: rewrote {EXPECTED}");
+        write_expected(outcomes, expected_file);
+        println!("corpus: rewrote {expected_file}");
         return;
     }
-    let expected = read_expected();
+    let expected = read_expected(expected_file);
     let mut worse = Vec::new();
     let mut better = Vec::new();
     for (file, outcome) in outcomes {
@@ -302,11 +382,11 @@ fn compare_with_expected(outcomes: &BTreeMap<String, Outcome>) {
         }
     }
     for b in &better {
-        println!("  better than {EXPECTED}: {b}");
+        println!("  better than {expected_file}: {b}");
     }
     assert!(
         worse.is_empty(),
-        "worse than {EXPECTED} (rewrite it with RAYTRACER_UPDATE_CORPUS=1 if intended):\n{}",
+        "worse than {expected_file} (rewrite it with RAYTRACER_UPDATE_CORPUS=1 if intended):\n{}",
         worse.join("\n")
     );
 }
@@ -318,10 +398,10 @@ fn compare_with_expected(outcomes: &BTreeMap<String, Outcome>) {
 /// [0, 1]).
 #[test]
 fn the_default_cutoff_keeps_every_corpus_scene_within_mse_1e5() {
-    let Some(dir) = corpus_dir() else {
-        eprintln!("corpus not found next to the repository; set RAYTRACER_CORPUS to run this test");
+    let corpora = corpora();
+    if corpora.is_empty() {
         return;
-    };
+    }
     let shown = |f: &Film| {
         let pixels = f
             .pixels
@@ -332,8 +412,11 @@ fn the_default_cutoff_keeps_every_corpus_scene_within_mse_1e5() {
     };
     let (mut compared, mut rays_full, mut rays_skip) = (0usize, 0u64, 0u64);
     let mut worst = (0.0f64, String::new());
-    for e in &read_manifest(&dir) {
-        let Ok(scene) = load_entry(&dir, e, 64) else {
+    for (dir, e) in corpora
+        .iter()
+        .flat_map(|c| c.entries.iter().map(move |e| (&c.dir, e)))
+    {
+        let Ok(scene) = load_entry(dir, e, 64) else {
             continue;
         };
         let run = |cutoff| {
