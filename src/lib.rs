@@ -16,6 +16,7 @@ pub mod integrator;
 pub mod light;
 pub mod material;
 pub mod math;
+pub mod memory;
 pub mod metric;
 pub mod parts;
 pub mod ray;

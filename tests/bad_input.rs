@@ -750,6 +750,64 @@ fn mesh_blow_ups_fail_cleanly() {
         &["--max-mesh-bytes", "1000"],
         &needles,
     );
+
+    // A mesh that would need more memory than the render may have, from its header's counts
+    // (PLY) or its faces' corners (OBJ), before it is read.
+    let needles = [
+        "many.ply",
+        "3 vertices and 2000 triangles",
+        "can be had",
+        "--max-memory",
+    ];
+    scene_fails(
+        d,
+        &mesh_scene("many.ply"),
+        &["--max-memory", "100000"],
+        &needles,
+    );
+    let obj = format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nf{}\n", " 1 2 3".repeat(700));
+    std::fs::write(d.join("fan.obj"), obj).unwrap();
+    let needles = ["fan.obj", "3 vertices and 2098 triangles", "--max-memory"];
+    scene_fails(
+        d,
+        &mesh_scene("fan.obj"),
+        &["--max-memory", "100000"],
+        &needles,
+    );
+}
+
+/// A one-line OBJ polygon of 24 million corners (under the triangle limit) in a process that may
+/// map 4 GB (`ulimit -v`): its memory is estimated from the corners and refused with a message,
+/// where it once ended the process on a failed allocation.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_mesh_too_large_for_the_address_space_is_refused_before_it_is_built() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let mut obj = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf");
+    obj.push_str(&" 1 2 3 4".repeat(6_000_000));
+    obj.push('\n');
+    std::fs::write(d.join("fan.obj"), obj).unwrap();
+    std::fs::write(d.join("scene.json"), mesh_scene("fan.obj")).unwrap();
+    let o = Command::new("bash")
+        .arg("-c")
+        .arg(r#"ulimit -v 4000000 && exec "$0" "$1" "$2""#)
+        .arg(env!("CARGO_BIN_EXE_raytracer"))
+        .arg(d.join("scene.json"))
+        .arg(d.join("out.png"))
+        .output()
+        .unwrap();
+    let msg = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{msg}");
+    for needle in [
+        "fan.obj",
+        "23999998 triangles",
+        "can be had",
+        "--max-memory",
+    ] {
+        assert!(msg.contains(needle), "the message lacks '{needle}': {msg}");
+    }
+    assert!(!d.join("out.png").exists());
 }
 
 #[cfg(unix)]

@@ -250,6 +250,7 @@ fn run(cli: &BatchCli, interrupt: &Interrupt) -> Result<Totals, Failure> {
             width: cli.width,
             height: cli.height,
             asset_dirs: cli.asset_dirs.clone(),
+            max_memory: crate::memory::available(),
             ..LoadOptions::default()
         },
         plan: &plan,

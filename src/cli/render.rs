@@ -76,6 +76,12 @@ struct Cli {
     /// Refuse mesh files (PLY, OBJ) larger than this many bytes; they are read whole.
     #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_MESH_BYTES)]
     max_mesh_bytes: u64,
+    /// Refuse mesh files whose triangles and vertices would need more than this many bytes to
+    /// load and trace (about 200 a triangle), checked from their counts before they are read.
+    /// Default: the memory the process can have (available memory and swap, within its
+    /// address-space limit).
+    #[arg(long, value_name = "BYTES")]
+    max_memory: Option<u64>,
     /// Render only the pixels x ∈ [X0, X1), y ∈ [Y0, Y1) (origin top left) of the image, as an
     /// EXR tile for `raytracer merge` (the output must be .exr).
     #[arg(long, value_name = "X0,Y0,X1,Y1", conflicts_with = "tile")]
@@ -151,6 +157,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         max_scene_bytes: cli.max_scene_bytes,
         max_texture_pixels: cli.max_texture_pixels,
         max_mesh_bytes: cli.max_mesh_bytes,
+        max_memory: cli.max_memory.or_else(crate::memory::available),
     };
     let scene = load(&cli.scene, &load_options).map_err(|e| Failure::Input(e.to_string()))?;
     if cli.strict {

@@ -84,6 +84,10 @@ pub struct LoadOptions {
     pub max_texture_pixels: u64,
     /// Largest mesh file accepted, in bytes.
     pub max_mesh_bytes: u64,
+    /// Memory the mesh files may take, all together, in bytes ([`MeshLimits::max_memory`]):
+    /// the command line gives what the process can have ([`crate::memory::available`]) unless
+    /// `--max-memory` says otherwise. `None` (the default): not checked.
+    pub max_memory: Option<u64>,
 }
 
 impl Default for LoadOptions {
@@ -100,6 +104,7 @@ impl Default for LoadOptions {
             max_scene_bytes: DEFAULT_MAX_SCENE_BYTES,
             max_texture_pixels: DEFAULT_MAX_TEXTURE_PIXELS,
             max_mesh_bytes: DEFAULT_MAX_MESH_BYTES,
+            max_memory: None,
         }
     }
 }
@@ -1389,6 +1394,7 @@ impl<'o> Loader<'o> {
                 max_bytes: self.options.max_mesh_bytes,
                 max_triangles: self.options.max_triangles,
                 triangles_before: self.triangles,
+                max_memory: self.options.max_memory,
             };
             let mut data =
                 read_mesh_with(&path, &limits).map_err(|e| fnode.error(e.to_string()))?;

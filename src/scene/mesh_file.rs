@@ -74,6 +74,7 @@ use ply_rs_bw::ply::{
 
 use crate::files::input::{self, SizeLimit};
 use crate::files::shown;
+use crate::memory;
 
 /// A triangle mesh as read from a file: shared vertex buffers and triangle indices.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -97,6 +98,10 @@ pub struct MeshLimits {
     pub max_triangles: usize,
     /// Triangles the scene already has before this file.
     pub triangles_before: usize,
+    /// Memory the scene's meshes may take, all together (flag `--max-memory`; by default what
+    /// the process can have): a file whose estimate ([`memory::mesh_bytes`]) does not fit
+    /// beside the triangles before it is refused before it is read. `None`: not checked.
+    pub max_memory: Option<u64>,
 }
 
 impl Default for MeshLimits {
@@ -105,6 +110,7 @@ impl Default for MeshLimits {
             max_bytes: super::load::DEFAULT_MAX_MESH_BYTES,
             max_triangles: super::load::DEFAULT_MAX_TRIANGLES,
             triangles_before: 0,
+            max_memory: None,
         }
     }
 }
@@ -113,6 +119,31 @@ impl MeshLimits {
     /// Triangles this file may add.
     fn triangles_left(&self) -> u64 {
         self.max_triangles.saturating_sub(self.triangles_before) as u64
+    }
+
+    /// Refuses a file of `vertices` and `triangles` (at least) whose memory does not fit in
+    /// [`MeshLimits::max_memory`] beside the triangles before it.
+    fn check_memory(
+        &self,
+        path: &Path,
+        vertices: u64,
+        triangles: u64,
+    ) -> Result<(), MeshFileError> {
+        let Some(limit) = self.max_memory else {
+            return Ok(());
+        };
+        let before = memory::mesh_bytes(0, self.triangles_before as u64);
+        let needed = memory::mesh_bytes(vertices, triangles);
+        if needed <= limit.saturating_sub(before) {
+            return Ok(());
+        }
+        Err(MeshFileError::TooLargeForMemory {
+            path: path.to_path_buf(),
+            vertices,
+            triangles,
+            needed,
+            available: limit.saturating_sub(before),
+        })
     }
 
     /// The error for a file asking for more triangles than are left; `what` says how many.
@@ -262,6 +293,26 @@ pub enum MeshFileError {
         limit: usize,
         /// Triangles the scene has before this file.
         before: usize,
+    },
+    /// Loading and tracing the mesh would need more memory than the render may have.
+    #[error(
+        "{}: its {vertices} vertices and {triangles} triangles need about {} to load and trace, \
+         and {} can be had for them (raise it with --max-memory if the machine has more)",
+        shown(.path),
+        memory::shown(*.needed),
+        memory::shown(*.available)
+    )]
+    TooLargeForMemory {
+        /// The mesh file.
+        path: PathBuf,
+        /// Vertices the file declares.
+        vertices: u64,
+        /// Triangles it makes (for a PLY file, at least one a face).
+        triangles: u64,
+        /// The estimate of the bytes they take ([`memory::mesh_bytes`]).
+        needed: u64,
+        /// The bytes left for this file.
+        available: u64,
     },
     /// A buffer the file asks for could not be allocated.
     #[error("{}: not enough memory for {count} {what}", shown(.path))]
@@ -809,6 +860,7 @@ fn parse_ply(path: &Path, bytes: &[u8], limits: &MeshLimits) -> Result<MeshData,
             ),
         ));
     }
+    limits.check_memory(path, vertex_count as u64, face_def.count as u64)?;
 
     // --- Read the payload, element by element.
     let mut cursor = PlyCursor {
@@ -1065,6 +1117,7 @@ fn check_obj(path: &Path, text: &str, limits: &MeshLimits) -> Result<(), MeshFil
             _ => {}
         }
     }
+    limits.check_memory(path, counts[0] as u64, triangles)?;
     for kind in 0..3 {
         if let Some((index, line, face)) = largest[kind] {
             if index > counts[kind] {
