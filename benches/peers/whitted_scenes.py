@@ -6,7 +6,9 @@ Conventions that make the two agree (POV-Ray 3.7 documentation, "light_source", 
 - an area light is a 2-D grid of point lights, each carrying 1/(n·n) of the power, every
   one tested with its own shadow ray (`jitter`, no `adaptive`);
 - no ambient term (`ambientlight` 0; `ambient 0`), highlights are Blinn-Phong
-  (`specular` with `roughness` 1/exponent);
+  (`specular` with `roughness` 1/exponent), weighted by the share a CGR file leaves a surface's
+  own shading beside its mirror and glass (docs/scene-format.md, "Energy"): none on the perfect
+  mirrors and the glass;
 - `nbounces` N secondary levels after the camera ray is POV-Ray's `max_trace_level` N + 1;
 - CGR cameras put image right at up × forward, as POV-Ray's left-handed `right x` does; `angle` is horizontal,
   the JSON `fov` vertical, so the scenes are square.
@@ -178,8 +180,16 @@ def v(p):
     return "<%g, %g, %g>" % tuple(p)
 
 
+def own_share(m):
+    """What a CGR file leaves the surface's own shading: 1 less its mirror and glass weights."""
+    mirror = min(m.get("mirror", 0.0), 1.0)
+    glass = (1.0 - mirror) if "glass" in m else 0.0
+    return 1.0 - mirror - glass
+
+
 def pov_finish(m):
-    f = "ambient 0 diffuse %g specular %g roughness %g" % (m["kd"], m["ks"], 1.0 / m["exp"])
+    own = own_share(m)
+    f = "ambient 0 diffuse %g specular %g roughness %g" % (m["kd"] * own, m["ks"] * own, 1.0 / m["exp"])
     if "mirror" in m:
         f += " reflection %g" % m["mirror"]
     if "glass" in m:

@@ -7,4 +7,4 @@ mesh2 { vertex_vectors { 4, <-6, 0, 6>, <6, 0, 6>, <6, 0, -6>, <-6, 0, -6> } uv_
 sphere { <-2.4, 0.7, -0>, 0.7 texture { pigment { rgb <0.85, 0.4, 0.4> } finish { ambient 0 diffuse 0.8 specular 0.3 roughness 0.025 } } }
 sphere { <-0.8, 0.7, -0.3>, 0.7 texture { pigment { rgb <0.576243, 0.278067, 0.79569> } finish { ambient 0 diffuse 0.8 specular 0.3 roughness 0.025 } } }
 sphere { <0.8, 0.7, -0.6>, 0.7 texture { pigment { rgb <0.254591, 0.652425, 0.742984> } finish { ambient 0 diffuse 0.8 specular 0.3 roughness 0.025 } } }
-sphere { <2.4, 0.7, -0.9>, 0.7 texture { pigment { rgb <1, 1, 1> } finish { ambient 0 diffuse 0 specular 0.2 roughness 0.005 reflection 1 } } }
+sphere { <2.4, 0.7, -0.9>, 0.7 texture { pigment { rgb <1, 1, 1> } finish { ambient 0 diffuse 0 specular 0 roughness 0.005 reflection 1 } } }
