@@ -230,32 +230,35 @@ fn byte_bias(map: ToneMap) -> f32 {
 /// `3 * width * height` bytes, row-major from the top row, R, G, B per pixel.
 pub fn to_rgb8(film: &Film, map: ToneMap, exposure: f32) -> Vec<u8> {
     // One loop per map, each with its map fixed, rather than the map's choice in every channel.
-    let with = |m: ToneMap| move |x: f32| to_byte(tonemap_channel(x, m, exposure), byte_bias(m));
-    match map {
-        ToneMap::Linear => bytes(film, with(ToneMap::Linear)),
-        ToneMap::Srgb => bytes(film, with(ToneMap::Srgb)),
-        ToneMap::Reinhard => bytes(film, with(ToneMap::Reinhard)),
-        ToneMap::Exposure => bytes(film, with(ToneMap::Exposure)),
-        ToneMap::Cgr => {
-            let bias = byte_bias(map);
-            let mut out = vec![0u8; film.pixels.len() * 3];
-            for (rgb, &p) in out.chunks_exact_mut(3).zip(&film.pixels) {
-                let d = cgr::display(p * exposure);
-                rgb.copy_from_slice(&[to_byte(d.x, bias), to_byte(d.y, bias), to_byte(d.z, bias)]);
-            }
-            out
+    let channels = |m: ToneMap| {
+        move |p: Vec3| {
+            Vec3::new(
+                tonemap_channel(p.x, m, exposure),
+                tonemap_channel(p.y, m, exposure),
+                tonemap_channel(p.z, m, exposure),
+            )
         }
+    };
+    let bias = byte_bias(map);
+    match map {
+        ToneMap::Linear => bytes(film, channels(ToneMap::Linear), bias),
+        ToneMap::Srgb => bytes(film, channels(ToneMap::Srgb), bias),
+        ToneMap::Reinhard => bytes(film, channels(ToneMap::Reinhard), bias),
+        ToneMap::Exposure => bytes(film, channels(ToneMap::Exposure), bias),
+        ToneMap::Cgr => bytes(film, |p| cgr::display(p * exposure), bias),
     }
 }
 
-/// The film's channels through `byte`, R, G, B per pixel.
+/// Each pixel of the film through `display` (to display values in [0, 1]), then as bytes with
+/// rounding `bias`, R, G, B per pixel.
 #[inline(always)]
-fn bytes(film: &Film, byte: impl Fn(f32) -> u8) -> Vec<u8> {
+fn bytes(film: &Film, display: impl Fn(Vec3) -> Vec3, bias: f32) -> Vec<u8> {
     let mut out = vec![0u8; film.pixels.len() * 3];
-    for (rgb, p) in out.chunks_exact_mut(3).zip(&film.pixels) {
-        rgb[0] = byte(p.x);
-        rgb[1] = byte(p.y);
-        rgb[2] = byte(p.z);
+    for (rgb, &p) in out.chunks_exact_mut(3).zip(&film.pixels) {
+        let d = display(p);
+        rgb[0] = to_byte(d.x, bias);
+        rgb[1] = to_byte(d.y, bias);
+        rgb[2] = to_byte(d.z, bias);
     }
     out
 }
