@@ -35,17 +35,19 @@ pub fn available() -> Option<u64> {
 /// `MemAvailable` plus `SwapFree` from `/proc/meminfo`.
 fn system_available() -> Option<u64> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let field = |name: &str| -> Option<u64> {
-        let line = text.lines().find(|l| l.starts_with(name))?;
-        let kib: u64 = line[name.len()..]
-            .trim()
-            .trim_end_matches("kB")
-            .trim()
-            .parse()
-            .ok()?;
-        Some(kib * 1024)
-    };
-    Some(field("MemAvailable:")? + field("SwapFree:").unwrap_or(0))
+    Some(kib_field(&text, "MemAvailable:")? + kib_field(&text, "SwapFree:").unwrap_or(0))
+}
+
+/// The bytes of a `NAME:  N kB` line of a `/proc` file's `text`.
+fn kib_field(text: &str, name: &str) -> Option<u64> {
+    let line = text.lines().find(|l| l.starts_with(name))?;
+    let kib: u64 = line[name.len()..]
+        .trim()
+        .trim_end_matches("kB")
+        .trim()
+        .parse()
+        .ok()?;
+    Some(kib * 1024)
 }
 
 /// The soft `RLIMIT_AS` less the process's mapped size (`VmSize`), when there is a limit.
@@ -64,14 +66,8 @@ fn address_space_left() -> Option<u64> {
         return None;
     }
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmSize:"))?;
-    let mapped_kib: u64 = line["VmSize:".len()..]
-        .trim()
-        .trim_end_matches("kB")
-        .trim()
-        .parse()
-        .ok()?;
-    Some((limit.rlim_cur as u64).saturating_sub(mapped_kib * 1024))
+    let mapped = kib_field(&status, "VmSize:")?;
+    Some((limit.rlim_cur as u64).saturating_sub(mapped))
 }
 
 #[cfg(not(unix))]
@@ -111,6 +107,14 @@ mod tests {
         assert_eq!(shown(512), "512 bytes");
         assert_eq!(shown(1536), "1.5 KiB");
         assert_eq!(shown(3 << 30), "3.0 GiB");
+    }
+
+    #[test]
+    fn proc_fields_are_read_in_bytes() {
+        let text = "MemTotal:       24683800 kB\nMemAvailable:    1024 kB\nSwapFree: 0 kB\n";
+        assert_eq!(kib_field(text, "MemAvailable:"), Some(1024 * 1024));
+        assert_eq!(kib_field(text, "SwapFree:"), Some(0));
+        assert_eq!(kib_field(text, "VmSize:"), None);
     }
 
     #[cfg(target_os = "linux")]
