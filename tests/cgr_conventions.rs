@@ -8,12 +8,11 @@
 //! values, all channels; our render as the `render` command writes it). A convention that moved
 //! us towards one student and away from the course would fail it.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
-use raytracer::film::{to_rgb8, ToneMap};
-use raytracer::image_io::read_image;
-use raytracer::render::{render, RenderOptions};
-use raytracer::scene::{load_str, LoadOptions};
+use common::{cgr_render, mean_abs_diff, read_rgb8, Rgb8};
 
 const STUDENTS: [&str; 3] = [
     "Trenza1ore__std-raytracer__TestSuite__",
@@ -50,45 +49,16 @@ fn corpus_dir() -> Option<PathBuf> {
         .then_some(dir)
 }
 
-/// 8-bit RGB bytes as the `render` command writes them with the default tone map.
-fn our_render(corpus: &Path, file: &str, mode: Option<&str>) -> (u32, u32, Vec<u8>) {
-    let path = corpus.join(format!("chxag__CGR-Raytracing-CW2__TestSuite__{file}"));
-    let mut text = std::fs::read_to_string(&path).expect("test scene readable");
-    if let Some(mode) = mode {
-        let i = text
-            .find("\"binary\"")
-            .expect("the scene names its render mode");
-        text.replace_range(i..i + "\"binary\"".len(), &format!("\"{mode}\""));
-    }
-    let scene = load_str(&text, &path, &LoadOptions::default()).expect("test scene loads");
-    let out = render(&scene, &RenderOptions::default()).expect("renders");
-    let map = ToneMap::chosen(None, scene.tone_map);
-    let bytes = to_rgb8(&out.film, map, scene.display_exposure(map));
-    (out.film.width, out.film.height, bytes)
+/// Our render of a test scene, from the corpus's copy of the course's files.
+fn our_render(corpus: &Path, file: &str, mode: Option<&str>) -> Rgb8 {
+    cgr_render(
+        &corpus.join(format!("chxag__CGR-Raytracing-CW2__TestSuite__{file}")),
+        mode,
+    )
 }
 
-fn student_render(corpus: &Path, student: &str, name: &str) -> Option<(u32, u32, Vec<u8>)> {
-    png(&corpus.join(format!("reference/student_renders/{student}{name}.png")))
-}
-
-fn png(path: &Path) -> Option<(u32, u32, Vec<u8>)> {
-    if !path.is_file() {
-        return None;
-    }
-    let film = read_image(path).expect("render readable");
-    let bytes = film
-        .pixels
-        .iter()
-        .flat_map(|p| p.to_array())
-        .map(|v| (v * 255.0).round() as u8)
-        .collect();
-    Some((film.width, film.height, bytes))
-}
-
-fn mean_abs_diff(a: &[u8], b: &[u8]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let sum: u64 = a.iter().zip(b).map(|(&x, &y)| x.abs_diff(y) as u64).sum();
-    sum as f64 / a.len() as f64
+fn student_render(corpus: &Path, student: &str, name: &str) -> Option<Rgb8> {
+    read_rgb8(&corpus.join(format!("reference/student_renders/{student}{name}.png")))
 }
 
 #[test]
@@ -100,7 +70,7 @@ fn cgr_test_scenes_sit_among_the_students_renders_where_the_course_does() {
     let official = corpus.join("../official/cgr2024");
     let mut failures = Vec::new();
     for (name, file, mode, picture) in SCENES {
-        let Some((_, _, course)) = png(&official.join(format!("{picture}.png"))) else {
+        let Some((_, _, course)) = read_rgb8(&official.join(format!("{picture}.png"))) else {
             eprintln!("{name}: the course's picture is missing; skipped");
             continue;
         };

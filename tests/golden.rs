@@ -9,8 +9,8 @@
 
 mod common;
 
-use common::{bundled_scenes, repo};
-use raytracer::film::{to_rgb8, Film, ToneMap};
+use common::{bundled_scenes, repo, written_rgb8};
+use raytracer::film::{Film, ToneMap};
 use raytracer::integrator::TraceOptions;
 use raytracer::math::Vec3;
 use raytracer::metric::{flip_map, mean_flip, mse, Region};
@@ -55,8 +55,7 @@ fn displayed_with(scene: &Scene, trace: TraceOptions) -> (Film, u64) {
 /// The film as the `render` command writes it (the scene's default tone map and exposure), with
 /// its radiance scaled by `brightness`.
 fn quantised(film: &Film, scene: &Scene, brightness: f32) -> Film {
-    let map = ToneMap::chosen(None, scene.tone_map);
-    let bytes = to_rgb8(film, map, scene.display_exposure(map) * brightness);
+    let bytes = written_rgb8(scene, film, brightness);
     let pixels = bytes
         .chunks_exact(3)
         .map(|c| Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32) / 255.0)

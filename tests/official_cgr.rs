@@ -11,10 +11,7 @@
 
 mod common;
 
-use common::*;
-use raytracer::film::{to_rgb8, ToneMap};
-use raytracer::render::{render, RenderOptions};
-use raytracer::scene::{load_str, LoadOptions};
+use common::{cgr_render, mean_abs_diff, read_rgb8, repo, Rgb8};
 
 /// (picture, scene file, render mode to switch to, bound on the mean absolute difference).
 const PICTURES: [(&str, &str, Option<&str>, f64); 5] = [
@@ -25,67 +22,17 @@ const PICTURES: [(&str, &str, Option<&str>, f64); 5] = [
     ("mirror_image", "mirror_image.json", None, 4.0),
 ];
 
-struct Rgb8 {
-    width: usize,
-    height: usize,
-    bytes: Vec<u8>,
-}
-
-impl Rgb8 {
-    /// The image with each pixel taken from `at(x, y)`.
-    fn remapped(&self, at: impl Fn(usize, usize) -> (usize, usize)) -> Rgb8 {
-        let mut bytes = Vec::with_capacity(self.bytes.len());
-        for y in 0..self.height {
-            for x in 0..self.width {
-                let (sx, sy) = at(x, y);
-                let i = 3 * (sy * self.width + sx);
-                bytes.extend_from_slice(&self.bytes[i..i + 3]);
-            }
+/// The picture with each pixel taken from `at(x, y)`.
+fn remapped((width, height, bytes): &Rgb8, at: impl Fn(u32, u32) -> (u32, u32)) -> Vec<u8> {
+    let mut out = Vec::with_capacity(bytes.len());
+    for y in 0..*height {
+        for x in 0..*width {
+            let (sx, sy) = at(x, y);
+            let i = 3 * (sy * width + sx) as usize;
+            out.extend_from_slice(&bytes[i..i + 3]);
         }
-        Rgb8 { bytes, ..*self }
     }
-
-    fn mean_abs_diff(&self, other: &Rgb8) -> f64 {
-        assert_eq!((self.width, self.height), (other.width, other.height));
-        let sum: u64 = self
-            .bytes
-            .iter()
-            .zip(&other.bytes)
-            .map(|(&a, &b)| u64::from(a.abs_diff(b)))
-            .sum();
-        sum as f64 / self.bytes.len() as f64
-    }
-}
-
-fn ours(dir: &std::path::Path, file: &str, mode: Option<&str>) -> Rgb8 {
-    let path = dir.join(file);
-    let mut text = std::fs::read_to_string(&path).expect("scene readable");
-    if let Some(mode) = mode {
-        text = text.replacen("\"binary\"", &format!("\"{mode}\""), 1);
-    }
-    let scene = load_str(&text, &path, &LoadOptions::default()).expect("scene loads");
-    let film = render(&scene, &RenderOptions::default()).unwrap().film;
-    let map = ToneMap::chosen(None, scene.tone_map);
-    Rgb8 {
-        width: film.width as usize,
-        height: film.height as usize,
-        bytes: to_rgb8(&film, map, scene.display_exposure(map)),
-    }
-}
-
-fn course(dir: &std::path::Path, picture: &str) -> Rgb8 {
-    let film = raytracer::image_io::read_image(&dir.join(format!("{picture}.png")))
-        .expect("course picture readable");
-    Rgb8 {
-        width: film.width as usize,
-        height: film.height as usize,
-        bytes: film
-            .pixels
-            .iter()
-            .flat_map(|p| p.to_array())
-            .map(|v| (v * 255.0).round() as u8)
-            .collect(),
-    }
+    out
 }
 
 #[test]
@@ -97,16 +44,14 @@ fn cgr_test_scenes_match_the_course_renders() {
     }
     let mut failures = Vec::new();
     for (picture, file, mode, bound) in PICTURES {
-        let reference = course(&dir, picture);
-        let render = ours(&dir, file, mode);
-        let (w, h) = (render.width, render.height);
-        let d = render.mean_abs_diff(&reference);
-        let mirrored = render
-            .remapped(|x, y| (w - 1 - x, y))
-            .mean_abs_diff(&reference);
-        let flipped = render
-            .remapped(|x, y| (x, h - 1 - y))
-            .mean_abs_diff(&reference);
+        let (rw, rh, reference) =
+            read_rgb8(&dir.join(format!("{picture}.png"))).expect("the course's picture is there");
+        let render = cgr_render(&dir.join(file), mode);
+        let (w, h) = (render.0, render.1);
+        assert_eq!((w, h), (rw, rh), "{picture}");
+        let d = mean_abs_diff(&render.2, &reference);
+        let mirrored = mean_abs_diff(&remapped(&render, |x, y| (w - 1 - x, y)), &reference);
+        let flipped = mean_abs_diff(&remapped(&render, |x, y| (x, h - 1 - y)), &reference);
         println!(
             "{picture:18} {d:5.2}/255 (bound {bound}); mirrored {mirrored:5.2}, upside down {flipped:5.2}"
         );
