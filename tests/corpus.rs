@@ -172,10 +172,22 @@ fn base_for(corpus: &Path, reference: &str, asset: &str) -> Option<PathBuf> {
 
 /// Loads the scene of `e` at `width` pixels wide, its assets found through the manifest.
 fn load_entry(dir: &Path, e: &Entry, width: u32) -> Result<Scene, SceneError> {
+    // A reference whose tail is not the asset's (an absolute path from the author's machine,
+    // matched by its file name) is looked for under the asset's repository folder.
     let asset_dirs: Vec<PathBuf> = e
         .refs
         .iter()
-        .filter_map(|(r, a)| base_for(dir, r, a))
+        .filter_map(|(r, a)| {
+            base_for(dir, r, a).or_else(|| {
+                let mut parts = Path::new(a).components();
+                match (parts.next(), parts.next()) {
+                    (Some(top), Some(repo)) if a.starts_with("assets/") => {
+                        Some(dir.join(top).join(repo))
+                    }
+                    _ => None,
+                }
+            })
+        })
         .collect();
     let options = LoadOptions {
         width: Some(width),

@@ -75,11 +75,29 @@ fn count_chars(bytes: &[u8]) -> usize {
 /// The index keeps only a hash of each name (with the standard library's per-process random
 /// keys, so no file can be written to collide) and the first position that had it; a lookup
 /// checks the name found there, and only a collision falls back to reading the list in order.
+///
+/// An index of keys ([`NameIndex::keys`]) matches names as [`same_key`] does; other indexes
+/// match them exactly.
 #[derive(Default)]
 pub struct NameIndex {
     hasher: RandomState,
     first: HashMap<u64, usize>,
     len: usize,
+    fold: bool,
+}
+
+/// Whether two member names are spellings of the same key: equal once ASCII letters are
+/// lowercased and the separators `_`, `-` and space are dropped (`focalDistance`,
+/// `focal_distance`, `focaldistance` and `Focal-Distance` are one key).
+pub fn same_key(a: &str, b: &str) -> bool {
+    folded(a).eq(folded(b))
+}
+
+/// The bytes of `name` as [`same_key`] compares them.
+fn folded(name: &str) -> impl Iterator<Item = u8> + '_ {
+    name.bytes()
+        .filter(|b| !matches!(b, b'_' | b'-' | b' '))
+        .map(|b| b.to_ascii_lowercase())
 }
 
 impl NameIndex {
@@ -95,10 +113,41 @@ impl NameIndex {
         index
     }
 
+    /// An index of the member names of an object, matched as [`same_key`] does.
+    pub fn keys<'n>(names: impl ExactSizeIterator<Item = &'n str>) -> NameIndex {
+        let mut index = NameIndex {
+            first: HashMap::with_capacity(names.len()),
+            fold: true,
+            ..NameIndex::default()
+        };
+        for name in names {
+            index.push(name);
+        }
+        index
+    }
+
+    fn hash(&self, name: &str) -> u64 {
+        if self.fold {
+            let mut h = self.hasher.build_hasher();
+            folded(name).for_each(|b| h.write_u8(b));
+            h.finish()
+        } else {
+            self.hasher.hash_one(name)
+        }
+    }
+
+    fn matches(&self, a: &str, b: &str) -> bool {
+        if self.fold {
+            same_key(a, b)
+        } else {
+            a == b
+        }
+    }
+
     /// Adds `name` at the next position.
     pub fn push(&mut self, name: &str) {
         count_work(1);
-        let h = self.hasher.hash_one(name);
+        let h = self.hash(name);
         self.first.entry(h).or_insert(self.len);
         self.len += 1;
     }
@@ -106,12 +155,12 @@ impl NameIndex {
     /// The first position of `name`, in the list whose name at position `i` is `name_at(i)`.
     pub fn find<'n>(&self, name: &str, name_at: impl Fn(usize) -> &'n str) -> Option<usize> {
         count_work(1);
-        let i = *self.first.get(&self.hasher.hash_one(name))?;
-        if name_at(i) == name {
+        let i = *self.first.get(&self.hash(name))?;
+        if self.matches(name_at(i), name) {
             return Some(i);
         }
         count_work(self.len);
-        (0..self.len).find(|&j| name_at(j) == name)
+        (0..self.len).find(|&j| self.matches(name_at(j), name))
     }
 }
 
@@ -385,18 +434,18 @@ impl<'t> Source<'t> {
         (line, column + 1)
     }
 
-    /// The position of member `key` in `props`, the members of the object that starts at byte
-    /// `start` of this text.
+    /// The position of the first member spelled as `key` ([`same_key`]) in `props`, the members
+    /// of the object that starts at byte `start` of this text.
     fn member_position(&self, start: usize, props: &[ObjectProp], key: &str) -> Option<usize> {
         if props.len() <= LINEAR_LOOKUP_MAX {
-            let found = props.iter().position(|p| prop_name(&p.name) == key);
+            let found = props.iter().position(|p| same_key(prop_name(&p.name), key));
             count_work(found.map_or(props.len(), |i| i + 1));
             return found;
         }
         let mut indexes = self.members.borrow_mut();
         indexes
             .entry(start)
-            .or_insert_with(|| NameIndex::new(props.iter().map(|p| prop_name(&p.name))))
+            .or_insert_with(|| NameIndex::keys(props.iter().map(|p| prop_name(&p.name))))
             .find(key, |i| prop_name(&props[i].name))
     }
 
@@ -510,7 +559,8 @@ impl<'a, 't> Node<'a, 't> {
         matches!(self.value, Value::Object(_))
     }
 
-    /// The member `key` of an object (exact spelling), or `None` if absent or not an object.
+    /// The member `key` of an object, under any spelling of it ([`same_key`]), or `None` if
+    /// absent or not an object. The member's path has the key as the file spells it.
     pub fn get(&self, key: &str) -> Option<Node<'a, 't>> {
         let Value::Object(o) = self.value else {
             return None;
@@ -518,8 +568,15 @@ impl<'a, 't> Node<'a, 't> {
         let found = self.src.member_position(o.start(), &o.properties, key);
         self.src
             .record(&self.slot, o.start(), o.properties.len(), key, found);
-        let i = found?;
-        Some(self.child(&o.properties[i].value, key.to_string()))
+        let p = &o.properties[found?];
+        Some(self.child(&p.value, prop_name(&p.name).to_string()))
+    }
+
+    /// The key of this member as the file spells it (the last segment of its path), if it is a
+    /// member of an object.
+    pub fn key(&self) -> Option<&str> {
+        let last = self.path.rsplit('.').next()?;
+        (!last.is_empty() && !last.ends_with(']')).then_some(last)
     }
 
     /// The member `key` like [`Node::get`], but unrecorded: the lookup neither marks the member
@@ -529,8 +586,8 @@ impl<'a, 't> Node<'a, 't> {
         let Value::Object(o) = self.value else {
             return None;
         };
-        let i = self.src.member_position(o.start(), &o.properties, key)?;
-        Some(self.child(&o.properties[i].value, key.to_string()))
+        let p = &o.properties[self.src.member_position(o.start(), &o.properties, key)?];
+        Some(self.child(&p.value, prop_name(&p.name).to_string()))
     }
 
     /// The first present member among `keys` (spellings of the same concept). The other

@@ -17,7 +17,7 @@
 
 use std::collections::HashMap;
 
-use super::json::{work_count_add, Node};
+use super::json::{same_key, work_count_add, Node};
 
 /// Keys read nowhere and worth no warning, compared ignoring case; `parent.key` names a key only
 /// in an object that is the value of `parent` (or an element of it):
@@ -96,7 +96,7 @@ pub fn unknown_keys<'a, 't>(root: &Node<'a, 't>) -> Vec<(Node<'a, 't>, String)> 
             firsts[i].2 += 1;
             continue;
         }
-        let message = if unread.asked.iter().any(|a| &**a == unread.key) {
+        let message = if unread.asked.iter().any(|a| same_key(a, unread.key)) {
             // Asked for but not returned: an earlier spelling of the same key was read instead.
             format!(
                 "key '{}' is not read: another spelling of it, listed first in docs/scene-format.md, is; ignored",

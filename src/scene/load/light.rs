@@ -1,0 +1,312 @@
+//! Lights: points, ambient terms, and area lights of every shape.
+
+use super::shape::{quad_edges, right_angle_corner};
+use super::{nearest, non_negative_color, opt_f32, required, Loader};
+use crate::light::{Falloff, Intensity, Light};
+use crate::math::Vec3;
+use crate::sampling::Method;
+use crate::scene::json::Node;
+use crate::scene::lights;
+use crate::scene::{RenderMode, SceneError, Variant};
+
+const LIGHT_TYPES: &[&str] = &["pointlight", "arealight"];
+
+impl Loader<'_> {
+    pub(super) fn light(&mut self, l: &Node) -> Result<(), SceneError> {
+        if !l.is_object() {
+            return Err(l.error(format!("a light is an object, found {}", l.kind())));
+        }
+        let type_node = required(l, &["type"])?;
+        let kind = type_node.str()?.to_ascii_lowercase();
+        match kind.as_str() {
+            "pointlight" | "point" | "point_light" => {
+                let intensity = self.intensity(l)?;
+                let position = required(l, &["position", "pos"])?.vec3()?;
+                self.lights.push(Light::Point {
+                    position,
+                    intensity,
+                });
+            }
+            "ambient" | "ambientlight" => {
+                let n = required(l, &["intensity", "color", "colour"])?;
+                let a = non_negative_color(&n)?;
+                self.ambient = Some(self.ambient.unwrap_or(Vec3::ZERO) + a);
+            }
+            "arealight" | "area" | "area_light" | "quadlight" => {
+                let intensity = self.intensity(l)?;
+                self.area_light(l, intensity)?
+            }
+            other => {
+                let near = nearest(other, LIGHT_TYPES);
+                l.mark_all_read(); // skipped whole, with this warning
+                self.warn(
+                    &type_node,
+                    format!("unknown light type '{other}' (nearest known: '{near}'); skipped"),
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// `is`/`id` (power, 1/(4πd²)) or `intensity` (1/d² in 2019 files, no fall-off in CGR
+    /// files), possibly tinted by `color` or split into `diffuse`/`specular`; attenuation
+    /// coefficients `kc`/`kl`/`kq` replace the fall-off in any variant.
+    pub(super) fn intensity(&mut self, l: &Node) -> Result<Intensity, SceneError> {
+        let attenuation = self.attenuation(l)?;
+        let is = l.get("is").map(|n| n.color()).transpose()?;
+        let id = l.get("id").map(|n| n.color()).transpose()?;
+        if is.is_some() || id.is_some() {
+            let s = is.or(id).unwrap_or(Vec3::ONE);
+            let d = id.or(is).unwrap_or(Vec3::ONE);
+            return Ok(Intensity {
+                diffuse: d,
+                specular: s,
+                falloff: attenuation.unwrap_or(Falloff::InverseSquare {
+                    scale: 1.0 / (4.0 * std::f32::consts::PI),
+                }),
+            });
+        }
+        let base = match l.get_any(&["intensity", "power"]) {
+            Some(n) => n.color()?,
+            None => Vec3::ONE,
+        };
+        let tint = l
+            .get_any(&["color", "colour"])
+            .map(|n| n.color())
+            .transpose()?
+            .unwrap_or(Vec3::ONE);
+        let diffuse = l
+            .get("diffuse")
+            .map(|n| n.color())
+            .transpose()?
+            .unwrap_or(Vec3::ONE);
+        let specular = l
+            .get("specular")
+            .map(|n| n.color())
+            .transpose()?
+            .unwrap_or(diffuse);
+        if l.get_any(&["intensity", "power", "color", "colour", "diffuse"])
+            .is_none()
+        {
+            self.warn(
+                l,
+                "the light gives no intensity ('is'/'id' or 'intensity'); using 1",
+            );
+        }
+        let falloff = match (attenuation, self.variant) {
+            (Some(a), _) => a,
+            (None, Variant::Cgr) => Falloff::NONE,
+            (None, Variant::V2019 | Variant::V2021) => Falloff::InverseSquare { scale: 1.0 },
+        };
+        Ok(Intensity {
+            diffuse: base * tint * diffuse,
+            specular: base * tint * specular,
+            falloff,
+        })
+    }
+
+    /// A light's attenuation coefficients `kc`, `kl`, `kq` (`1/(kc + kl·d + kq·d²)`), if it gives
+    /// any; those it leaves out are 1, 0 and 0 (no fall-off).
+    pub(super) fn attenuation(&self, l: &Node) -> Result<Option<Falloff>, SceneError> {
+        if !l.has_any(&["kc", "kl", "kq"]) {
+            return Ok(None);
+        }
+        let mut k = [1.0, 0.0, 0.0];
+        for (slot, key) in k.iter_mut().zip(["kc", "kl", "kq"]) {
+            if let Some(n) = l.get(key) {
+                let v = n.f32()?;
+                if v < 0.0 {
+                    return Err(n.error(format!("{key} must be ≥ 0, found {v}")));
+                }
+                *slot = v;
+            }
+        }
+        if k == [0.0; 3] {
+            return Err(l.error("the attenuation kc + kl·d + kq·d² is zero at every distance"));
+        }
+        Ok(Some(Falloff::Polynomial {
+            kc: k[0],
+            kl: k[1],
+            kq: k[2],
+        }))
+    }
+
+    /// An area light: a quad from its corners or edges, or the sphere, quad or triangle of its
+    /// `shape`, or the scene shape its `shapeid` names (resolved after the shapes are read).
+    pub(super) fn area_light(&mut self, l: &Node, intensity: Intensity) -> Result<(), SceneError> {
+        let corner = |k: &str| l.get(k).map(|n| n.vec3()).transpose();
+        let (origin, edge_u, edge_v) = if let (Some(a), Some(b), Some(c)) =
+            (corner("v0")?, corner("v1")?, corner("v2")?)
+        {
+            match corner("v3")? {
+                Some(d) => quad_edges([a, b, c, d]),
+                None => right_angle_corner(a, b, c),
+            }
+        } else if let (Some(a), Some(b), Some(c)) = (corner("c1")?, corner("c2")?, corner("c3")?) {
+            right_angle_corner(a, b, c)
+        } else if let (Some(p), Some(e0), Some(e1)) = (corner("p")?, corner("e0")?, corner("e1")?) {
+            (p, e0, e1)
+        } else if let (Some(p), Some(u), Some(v)) =
+            (corner("position")?, corner("u")?, corner("v")?)
+        {
+            // Centred on `position`; with `width`/`height` the edges are `u`, `v` scaled to those
+            // lengths, otherwise `u` and `v` are the edges.
+            let w = opt_f32(l, &["width"])?;
+            let h = opt_f32(l, &["height"])?;
+            let eu = match w {
+                Some(w) => u.normalize_or_zero() * w,
+                None => u,
+            };
+            let ev = match h {
+                Some(h) => v.normalize_or_zero() * h,
+                None => v,
+            };
+            (p - 0.5 * eu - 0.5 * ev, eu, ev)
+        } else if let (Some(p), Some(size)) = (corner("position")?, l.get("size")) {
+            let (sw, sh) = match size.numbers() {
+                Ok(v) if v.len() == 2 => (v[0] as f32, v[1] as f32),
+                _ => {
+                    let s = size.f32()?;
+                    (s, s)
+                }
+            };
+            // A horizontal rectangle (in the x–z plane).
+            let eu = Vec3::X * sw;
+            let ev = Vec3::Z * sh;
+            (p - 0.5 * eu - 0.5 * ev, eu, ev)
+        } else if let Some(shape) = l.get("shape") {
+            return self.shaped_area_light(l, &shape, intensity);
+        } else if let Some(id) = l.get("shapeid") {
+            let (samples, method) = self.area_sampling(l)?;
+            self.emitters
+                .want(self.lights.len(), &id, intensity, samples, method)?;
+            // A placeholder, replaced once the shapes are read.
+            self.lights.push(Light::Point {
+                position: Vec3::ZERO,
+                intensity,
+            });
+            return Ok(());
+        } else if let (Some(p), RenderMode::Path) = (corner("position")?, self.mode) {
+            // The one renderer whose path-tracing files give area lights only a position makes
+            // them 1 × 1 squares spanning x and y, centred there (docs/scene-format.md).
+            (p - 0.5 * (Vec3::X + Vec3::Y), Vec3::X, Vec3::Y)
+        } else if let Some(p) = corner("position")? {
+            self.warn(
+                l,
+                format!(
+                    "an area light given only by a position (no corners, edges, 'shape' or \
+                     'shapeid'); treated as a point light at [{}, {}, {}]",
+                    p.x, p.y, p.z
+                ),
+            );
+            self.lights.push(Light::Point {
+                position: p,
+                intensity,
+            });
+            return Ok(());
+        } else {
+            return Err(l.error(
+                "an area light needs corners 'v0'..'v3' (or 'p'+'e0'+'e1', 'position'+'u'+'v', \
+                 a 'shape' or a 'shapeid')",
+            ));
+        };
+        let (samples, method) = self.area_sampling(l)?;
+        let mut light = Light::quad(origin, edge_u, edge_v, intensity, samples, method);
+        if let Some(n) = l.get("normal") {
+            let v = n.vec3()?;
+            if v == Vec3::ZERO {
+                return Err(n.error("an area light's normal must not be zero"));
+            }
+            if let Light::Quad { facing, .. } = &mut light {
+                *facing = Some(v.normalize());
+            }
+        }
+        self.lights.push(light);
+        Ok(())
+    }
+
+    /// An area light given by its own `shape`: a sphere, or a quad or triangle under the corner
+    /// spellings of shapes.
+    pub(super) fn shaped_area_light(
+        &mut self,
+        l: &Node,
+        shape: &Node,
+        intensity: Intensity,
+    ) -> Result<(), SceneError> {
+        if !shape.is_object() {
+            return Err(shape.error(format!(
+                "a light's shape is an object, found {}",
+                shape.kind()
+            )));
+        }
+        let type_node = required(shape, &["type"])?;
+        let kind = type_node.str()?.to_ascii_lowercase();
+        let light = if kind == "sphere" || kind == "uvsphere" {
+            let (center, radius) = lights::sphere(shape)?;
+            let (samples, method) = self.area_sampling(l)?;
+            Light::Sphere {
+                center,
+                radius,
+                intensity,
+                samples,
+                method,
+                surface: 0..0,
+            }
+        } else if let Some(n) = lights::flat_corners(&kind) {
+            let p = self.corners(shape, n)?;
+            let (samples, method) = self.area_sampling(l)?;
+            if n == 4 {
+                let (origin, edge_u, edge_v) = quad_edges([p[0], p[1], p[2], p[3]]);
+                if edge_u.cross(edge_v) == Vec3::ZERO {
+                    return Err(shape.error("the quad has zero area (its corners are collinear)"));
+                }
+                Light::quad(origin, edge_u, edge_v, intensity, samples, method)
+            } else {
+                let triangles = vec![[p[0], p[1], p[2]]];
+                if (p[1] - p[0]).cross(p[2] - p[0]) == Vec3::ZERO {
+                    return Err(
+                        shape.error("the triangle has zero area (its corners are collinear)")
+                    );
+                }
+                Light::Triangles {
+                    cumulative_area: crate::light::cumulative_areas(&triangles),
+                    triangles,
+                    intensity,
+                    samples,
+                    method,
+                    surface: 0..0,
+                }
+            }
+        } else {
+            return Err(type_node.error(format!(
+                "an area light's shape must be a sphere, a triangle or a quad ('plane'), found '{kind}'"
+            )));
+        };
+        self.lights.push(light);
+        Ok(())
+    }
+
+    /// An area light's shadow rays per shading point and their placement: `method` (default
+    /// jittered) and `samples` (default 4; the grid's side for jittered, the total otherwise).
+    pub(super) fn area_sampling(&mut self, l: &Node) -> Result<(u32, Method), SceneError> {
+        let method = self.sampling_method(l)?.unwrap_or(Method::Jittered);
+        let samples_node = l.get_any(&["samples", "nsamples", "samplesize", "cell"]);
+        let samples = match &samples_node {
+            Some(n) => n.u32()?.max(1),
+            None => 4,
+        };
+        // `jittered`: `samples` is the side of the grid; `random` and `sobol`: the total.
+        let total = match method {
+            Method::Jittered => samples as u64 * samples as u64,
+            Method::Random | Method::Sobol => samples as u64,
+        };
+        if total > self.options.max_light_samples as u64 {
+            let n = samples_node.unwrap_or_else(|| l.clone());
+            return Err(n.error(format!(
+                "{total} shadow rays per point is over the limit of {} (raise it with --max-light-samples)",
+                self.options.max_light_samples
+            )));
+        }
+        Ok((total as u32, method))
+    }
+}
