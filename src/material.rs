@@ -41,6 +41,9 @@ pub struct Material {
     /// scatters into the lobe; Whitted reflection traces one ray per camera sample about a half
     /// vector drawn from it.
     pub mirror_exponent: f32,
+    /// Colour of the light a transmissive material lets through (a glass's
+    /// `transmittancecolor`); white otherwise.
+    pub transmit: Vec3,
     /// Radiance the surface emits (`emittance`, or an `emissive` material's colour × intensity).
     /// A sphere, triangle or quad with an emitting material is an area light.
     pub emission: Vec3,
@@ -61,6 +64,7 @@ impl Default for Material {
             texture: None,
             mirror: Vec3::ONE,
             mirror_exponent: f32::INFINITY,
+            transmit: Vec3::ONE,
             emission: Vec3::ZERO,
         }
     }

@@ -44,6 +44,33 @@ pub struct Texture {
     /// Added to every lookup's uv before wrapping (zero unless a library entry gives
     /// `offset_u`/`offset_v`; the loader turns those into this frame).
     pub offset: Vec2,
+    /// A procedural checkerboard, which takes the place of the texels.
+    pub checker: Option<Checker>,
+}
+
+/// Squares of two colours: `scale` squares to a unit of the shape's uv, or of world space when
+/// `solid` (cubes then, the same on every shape cut through them).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Checker {
+    pub colours: [Vec3; 2],
+    pub scale: f32,
+    pub solid: bool,
+}
+
+impl Checker {
+    /// The colour of the square or cube holding `p` (the first where the sum of the cell's
+    /// coordinates is even).
+    fn at(&self, p: &[f32]) -> Vec3 {
+        let cells: f64 = p
+            .iter()
+            .map(|&x| floor_f64(f64::from(x) * f64::from(self.scale)))
+            .sum();
+        if cells.rem_euclid(2.0) == 0.0 {
+            self.colours[0]
+        } else {
+            self.colours[1]
+        }
+    }
 }
 
 /// A texture's texels.
@@ -122,6 +149,7 @@ impl Texture {
                 height,
                 texels: Texels::Bytes(texels, if gray { &GREY_VALUES } else { &COLOUR_VALUES }),
                 offset: Vec2::ZERO,
+                checker: None,
             },
             TextureImage::Floats(film) => {
                 Texture::from_texels(film.width, film.height, film.pixels)
@@ -152,6 +180,24 @@ impl Texture {
             height,
             texels: Texels::Floats(texels),
             offset: Vec2::ZERO,
+            checker: None,
+        }
+    }
+
+    /// A procedural checkerboard.
+    pub fn checker(checker: Checker) -> Texture {
+        Texture {
+            checker: Some(checker),
+            ..Texture::constant(checker.colours[0])
+        }
+    }
+
+    /// The colour at a surface point of texture coordinates `uv` and world position `point`:
+    /// a solid checkerboard's cube there, otherwise [`Texture::sample`] at `uv`.
+    pub fn sample_at(&self, uv: Vec2, point: Vec3) -> Vec3 {
+        match &self.checker {
+            Some(c) if c.solid => c.at(&point.to_array()),
+            _ => self.sample(uv),
         }
     }
 
@@ -185,6 +231,10 @@ impl Texture {
     /// Non-finite uv returns texel (0,0). An empty texture returns black. [`Texture::offset`]
     /// is added to `uv` first.
     pub fn sample(&self, uv: Vec2) -> Vec3 {
+        if let Some(c) = &self.checker {
+            let uv = uv + self.offset;
+            return c.at(&uv.to_array());
+        }
         if self.width == 0 || self.height == 0 {
             return Vec3::ZERO;
         }

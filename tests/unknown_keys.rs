@@ -96,7 +96,8 @@ fn library_materials_warn_only_when_used() {
 
 #[test]
 fn keys_read_in_other_modes_and_skipped_objects_are_quiet() {
-    // A texture in binary mode, the lens of a pinhole camera, an object of an unknown type.
+    // A texture in binary mode, the lens of a camera typed pinhole (which has the lens it gives),
+    // an object of an unknown type.
     let text = r#"{ "rendermode": "binary",
   "camera": { "type": "pinhole", "width": 8, "height": 6, "fov": 40, "aperture": 0.1, "focusdistance": 3,
               "samplesize": 16 },
@@ -108,7 +109,8 @@ fn keys_read_in_other_modes_and_skipped_objects_are_quiet() {
     assert!(key_warnings(&scene).is_empty(), "{:?}", scene.warnings);
     // The unknown types are still warned about, once each.
     assert_eq!(scene.warnings.len(), 2, "{:?}", scene.warnings);
-    assert_eq!(scene.pixel_samples, None);
+    assert!(scene.camera.lens.is_some());
+    assert_eq!(scene.pixel_samples, Some(16));
 }
 
 #[test]
@@ -174,9 +176,10 @@ fn scene_sample_counts_are_read_with_their_spellings() {
     assert_eq!((s.pixel_samples, s.light_samples), (Some(15), Some(15)));
     let s = with(r#""camera samples": 8, "shadow samples": 2,"#, "pinhole");
     assert_eq!((s.pixel_samples, s.light_samples), (Some(8), Some(2)));
-    // A thin-lens camera's lens samples are its samples per pixel; a pinhole's are not read.
+    // A camera's lens samples are its samples per pixel, whatever its type when it gives an
+    // aperture.
     assert_eq!(with("", "thinlens").pixel_samples, Some(9));
-    assert_eq!(with("", "pinhole").pixel_samples, None);
+    assert_eq!(with("", "pinhole").pixel_samples, Some(9));
     // The top level wins over the camera; 0 means one sample.
     assert_eq!(with(r#""nspp": 0,"#, "thinlens").pixel_samples, Some(1));
 }

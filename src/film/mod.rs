@@ -107,16 +107,21 @@ pub enum ToneMap {
     /// The CGR course's display transform ([`cgr::display`]): a logarithmic curve on
     /// luminance with colour carried by each channel's ratio to it. The default for CGR files.
     Cgr,
+    /// Narkowicz's fit of the ACES filmic curve, `x(2.51x + 0.03) / (x(2.43x + 0.59) + 0.14)`
+    /// per channel, no gamma ("ACES Filmic Tone Mapping Curve", 2016): what CGR files ask for
+    /// with a camera's `"tone_mapping": "aces"`.
+    Aces,
 }
 
 impl ToneMap {
     /// All tone maps, in the order they are listed in messages.
-    pub const ALL: [ToneMap; 5] = [
+    pub const ALL: [ToneMap; 6] = [
         ToneMap::Linear,
         ToneMap::Srgb,
         ToneMap::Reinhard,
         ToneMap::Exposure,
         ToneMap::Cgr,
+        ToneMap::Aces,
     ];
 
     /// The lower-case name used by [`FromStr`] and [`Display`](fmt::Display).
@@ -127,6 +132,7 @@ impl ToneMap {
             ToneMap::Reinhard => "reinhard",
             ToneMap::Exposure => "exposure",
             ToneMap::Cgr => "cgr",
+            ToneMap::Aces => "aces",
         }
     }
 
@@ -144,13 +150,13 @@ impl fmt::Display for ToneMap {
 
 /// Error from parsing a [`ToneMap`] name.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown tone map '{0}' (expected one of: linear, srgb, reinhard, exposure, cgr)")]
+#[error("unknown tone map '{0}' (expected one of: linear, srgb, reinhard, exposure, cgr, aces)")]
 pub struct ParseToneMapError(pub String);
 
 impl FromStr for ToneMap {
     type Err = ParseToneMapError;
 
-    /// Parses `linear`, `srgb`, `reinhard`, `exposure` or `cgr` (ASCII case-insensitive, surrounding spaces ignored).
+    /// Parses `linear`, `srgb`, `reinhard`, `exposure`, `cgr` or `aces` (ASCII case-insensitive, surrounding spaces ignored).
     fn from_str(s: &str) -> Result<ToneMap, ParseToneMapError> {
         let t = s.trim();
         ToneMap::ALL
@@ -182,6 +188,7 @@ fn tonemap_channel(x: f32, map: ToneMap, exposure: f32) -> f32 {
         ToneMap::Srgb => srgb_encode(x.min(1.0)),
         ToneMap::Reinhard => srgb_encode(x / (1.0 + x)),
         ToneMap::Exposure => -(-x).exp_m1(),
+        ToneMap::Aces => x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14),
         // A channel on its own is a grey; `tonemap` maps the pixel's channels together.
         ToneMap::Cgr => cgr::display(Vec3::splat(x)).x,
     }
@@ -193,6 +200,7 @@ fn tonemap_channel(x: f32, map: ToneMap, exposure: f32) -> f32 {
 /// Srgb: the sRGB transfer curve (IEC 61966-2-1) of clamp(x,0,1);
 /// Reinhard: x/(1+x) per channel, then the sRGB curve;
 /// Exposure: 1 − exp(−x) per channel, no gamma;
+/// Aces: Narkowicz's filmic curve per channel, no gamma;
 /// Cgr: the course's transform of the whole pixel ([`cgr::display`]).
 /// Non-finite or negative input maps to 0 (per channel, after the exposure scaling; for Cgr, an
 /// infinite channel makes the pixel black).
@@ -245,6 +253,7 @@ pub fn to_rgb8(film: &Film, map: ToneMap, exposure: f32) -> Vec<u8> {
         ToneMap::Srgb => bytes(film, channels(ToneMap::Srgb), bias),
         ToneMap::Reinhard => bytes(film, channels(ToneMap::Reinhard), bias),
         ToneMap::Exposure => bytes(film, channels(ToneMap::Exposure), bias),
+        ToneMap::Aces => bytes(film, channels(ToneMap::Aces), bias),
         ToneMap::Cgr => bytes(film, |p| cgr::display(p * exposure), bias),
     }
 }

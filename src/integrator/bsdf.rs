@@ -78,6 +78,8 @@ pub struct Bsdf {
     p_glossy: f32,
     /// `η_incident / η_transmitted` for light crossing from the ray's side.
     eta: f32,
+    /// Colour of the light the glass lets through.
+    transmit: Vec3,
 }
 
 /// Giesen's normalisation of a Blinn-Phong lobe of exponent `e ≥ 0`.
@@ -117,6 +119,7 @@ impl Bsdf {
                 blinn_phong_norm(exponent)
             },
             tint: material.mirror,
+            transmit: material.transmit,
             mirror_exponent: material.mirror_exponent,
             mirror_norm: if material.mirror_exponent.is_finite() {
                 blinn_phong_norm(material.mirror_exponent.max(0.0))
@@ -240,7 +243,7 @@ impl Bsdf {
             let dir = refract(-wo, self.ng, self.eta)?;
             return Some(BsdfSample {
                 dir,
-                weight: Vec3::splat(self.eta * self.eta),
+                weight: self.transmit * (self.eta * self.eta),
                 pdf: 0.0,
                 delta: true,
             });

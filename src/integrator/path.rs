@@ -153,7 +153,7 @@ impl<'a> PathTracer<'a> {
                 (-hit.normal, -hit.shading_normal)
             };
             let base = match material.texture {
-                Some(t) => scene.textures[t as usize].sample(hit.uv),
+                Some(t) => scene.textures[t as usize].sample_at(hit.uv, hit.point),
                 None => material.diffuse,
             };
             let bsdf = Bsdf::new(material, base, ns, n, front);

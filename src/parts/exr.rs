@@ -14,7 +14,7 @@
 //! and its attributes (in the header): `raytracer.fingerprint` (16 hex digits, see
 //! [`super::fingerprint`]), `raytracer.spp` (the whole render's samples per pixel),
 //! `raytracer.samples` (`A..B`, the samples this part holds) and `raytracer.exposure` (the
-//! scene's display exposure for each tone map, as `linear=… srgb=… reinhard=… exposure=… cgr=…`);
+//! scene's display exposure for each tone map, as `linear=… srgb=… reinhard=… exposure=… cgr=… aces=…`);
 //! `raytracer.adaptive` (f32, only in tiles of adaptive renders: the noise threshold; each
 //! pixel's `sum.count` is then the samples it took, 1 to all); `raytracer.tonemap` (text, only
 //! when the scene asks for a tone map: its name, which a merge then applies by default).
@@ -378,7 +378,7 @@ mod tests {
             samples: 2..5,
             spp: 9,
             fingerprint: 0x0123_4567_89ab_cdef,
-            exposure: [1.0, 1.0, 1.0, 0.5, 1.0],
+            exposure: [1.0, 1.0, 1.0, 0.5, 1.0, 1.0],
             tone_map: None,
             sums,
             counts: vec![3; 6],

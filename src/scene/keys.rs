@@ -25,6 +25,8 @@ use super::json::{same_key, work_count_add, Node};
 ///   `title`;
 /// - accelerator switches (`--accel` chooses here): `bvh`, `use_bvh`, `usebvh`, `accelerator`;
 /// - the output image (given on the command line): `output`;
+/// - a label naming the model a shape was cut from, on shapes that are not meshes (a mesh's
+///   `model` is its file): `shapes.model`;
 /// - a texture's size, read from the image itself: `tWidth`, `tHeight`, and `width`/`height` in
 ///   a `texture` object or a `textures` library entry.
 pub const HARMLESS: &[&str] = &[
@@ -41,6 +43,7 @@ pub const HARMLESS: &[&str] = &[
     "usebvh",
     "accelerator",
     "output",
+    "shapes.model",
     "twidth",
     "theight",
     "texture.width",

@@ -208,7 +208,8 @@ struct Branch {
     key: SampleKey,
     /// Accumulated weight of the ray, for the cut-off.
     weight: f32,
-    factor: f32,
+    /// What its radiance is multiplied by at the point it leaves.
+    factor: Vec3,
     /// The sphere the ray starts inside of, where [`Interiors`] answers its query.
     inside: Option<Inside>,
 }
@@ -244,7 +245,7 @@ impl Leaving<'_> {
                 *self.key
             },
             weight: self.weight * factor,
-            factor,
+            factor: Vec3::splat(factor),
         }
     }
 }
@@ -302,7 +303,7 @@ struct Open {
     /// Direct light plus the scaled radiance of the branches finished so far.
     color: Vec3,
     /// Factor of this point's radiance in its parent's.
-    factor: f32,
+    factor: Vec3,
     /// Its rays still on [`Whitted::pending`].
     pending: u32,
 }
@@ -432,7 +433,7 @@ impl<'a> Whitted<'a> {
         open.clear();
         open.push(Open {
             color,
-            factor: 1.0,
+            factor: Vec3::ONE,
             pending: pending.len() as u32,
         });
         let result = loop {
@@ -528,7 +529,7 @@ impl<'a> Whitted<'a> {
         };
         let v = -ray.dir;
         let base = match material.texture {
-            Some(t) => scene.textures[t as usize].sample(hit.uv),
+            Some(t) => scene.textures[t as usize].sample_at(hit.uv, hit.point),
             None => material.diffuse,
         };
 
@@ -620,7 +621,9 @@ impl<'a> Whitted<'a> {
             let transmit = shares.glass * (1.0 - f);
             if transmit > 0.0 && self.worth_tracing(weight * transmit) {
                 if let Some(t) = refract(ray.dir, n, eta) {
-                    refracted = Some(leaving.branch(t, 2, transmit));
+                    let mut b = leaving.branch(t, 2, transmit);
+                    b.factor *= material.transmit; // a coloured glass's tint
+                    refracted = Some(b);
                 }
             }
         }

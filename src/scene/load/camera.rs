@@ -1,36 +1,11 @@
 //! The camera: pose, field of view, image size, exposure and lens.
 
-use super::{is_cgr, opt_f32, opt_vec3, required, Loader};
+use super::spellings::{camera, type_names, type_of, CAMERA_TYPES};
+use super::{is_cgr, nearest, opt_f32, opt_vec3, required, Loader};
 use crate::camera::{Camera, Handedness, Lens};
 use crate::math::Vec3;
 use crate::scene::json::Node;
 use crate::scene::SceneError;
-
-/// A thin-lens camera's lens radius.
-const LENS_RADIUS_KEYS: &[&str] = &["lensRadius", "lensradius", "lens_radius", "radius"];
-/// A thin-lens camera's lens diameter.
-/// `size` is the side of the square aperture of one renderer (TsFreddie's jittered lens sampler
-/// spreads samples over `[−size/2, size/2]²`), read as the diameter of our round one.
-const LENS_DIAMETER_KEYS: &[&str] = &["aperture", "aperture_size", "diameter", "ap", "d", "size"];
-/// The lens diameter at the top level.
-const ROOT_DIAMETER_KEYS: &[&str] = &["aperture"];
-/// A thin-lens camera's focus distance.
-const FOCUS_KEYS: &[&str] = &[
-    "focusdistance",
-    "focus_distance",
-    "focalDistance",
-    "focusDistance",
-    "focus_dist",
-    "focalLength",
-    "focal_length",
-    "focal",
-    "focus",
-    "f",
-];
-/// The focus distance at the top level.
-const ROOT_FOCUS_KEYS: &[&str] = &["focus_distance", "focusdistance"];
-/// A thin-lens camera's rays per pixel (the total).
-const LENS_SAMPLE_KEYS: &[&str] = &["samplesize", "nsamples"];
 
 impl Loader<'_> {
     /// The camera, its exposure, and (for a thin-lens camera) its count of lens samples per pixel.
@@ -42,28 +17,31 @@ impl Loader<'_> {
         if !cam.is_object() {
             return Err(cam.error(format!("expected an object, found {}", cam.kind())));
         }
-        let kind = match cam.get("type") {
-            Some(t) => t.str()?.to_ascii_lowercase(),
-            None => "pinhole".into(),
-        };
         // A top-level `use_dof` (with `aperture` and `focus_distance` beside it) turns the
         // camera into a thin lens, as the files of one CGR renderer write it.
         let use_dof = match root.get("use_dof") {
             Some(n) => n.bool()?,
             None => false,
         };
-        let thin_lens = match kind.as_str() {
+        let thin_lens = match cam.get("type") {
             _ if use_dof => true,
-            "pinhole" | "perspective" => false,
-            "thinlens" | "thinlen" | "thin_lens" | "lens" | "aperture" | "dof" => true,
-            other => {
-                let t = cam.get("type").unwrap_or_else(|| cam.clone());
-                self.warn(
-                    &t,
-                    format!("unknown camera type '{other}'; using a pinhole camera"),
-                );
-                false
-            }
+            None => false,
+            Some(t) => match type_of(CAMERA_TYPES, t.str()?) {
+                Some("pinhole") => false,
+                Some(_) => true,
+                None => {
+                    self.warn(
+                        &t,
+                        format!(
+                            "unknown camera type '{}' (nearest known: '{}'); using a pinhole \
+                             camera, with a lens if it gives an aperture",
+                            t.str()?,
+                            nearest(t.str()?, &type_names(CAMERA_TYPES))
+                        ),
+                    );
+                    false
+                }
+            },
         };
         let settings = root.get("settings").filter(|n| n.is_object());
         let size_holder = match &settings {
@@ -99,13 +77,13 @@ impl Loader<'_> {
             )));
         }
         let aspect = width as f32 / height as f32;
-        let fov_y = if let Some(n) = cam.get("fov") {
+        let fov_y = if let Some(n) = cam.get_any(camera::FOV) {
             let f = n.f32()?;
             if !(f > 0.0 && f < 180.0) {
                 return Err(n.error(format!("fov must be between 0 and 180 degrees, found {f}")));
             }
             f
-        } else if let Some(n) = cam.get("hfov") {
+        } else if let Some(n) = cam.get_any(camera::HFOV) {
             let f = n.f32()?;
             if !(f > 0.0 && f < 180.0) {
                 return Err(n.error(format!("hfov must be between 0 and 180 degrees, found {f}")));
@@ -117,11 +95,57 @@ impl Loader<'_> {
                 .unwrap_or_else(|| cam.error("missing fov")));
         };
 
-        let position_keys = [
-            "position", "location", "origin", "lookfrom", "camPos", "eye",
-        ];
-        let position = opt_vec3(cam, &position_keys)?;
-        let look = cam.get_any(&["lookat", "look_at", "look", "camView", "target"]);
+        let (position, dir, up, dir_node) = self.pose(cam)?;
+        let exposure = match cam
+            .get_any(camera::EXPOSURE)
+            .or_else(|| root.get_any(camera::EXPOSURE))
+        {
+            Some(n) => {
+                let e = n.f32()?;
+                if e < 0.0 {
+                    return Err(n.error(format!("exposure must be ≥ 0, found {e}")));
+                }
+                e
+            }
+            None => 1.0,
+        };
+
+        let lens = self.lens(root, cam, thin_lens, dir)?;
+        // A camera with a lens is a thin lens whatever its type says.
+        let thin_lens = lens.is_some();
+
+        let handedness = if is_cgr(root, cam) {
+            Handedness::UpCrossForward
+        } else {
+            Handedness::ForwardCrossUp
+        };
+        let camera = Camera::new(position, dir, up, handedness, width, height, fov_y, lens)
+            .ok_or_else(|| dir_node.error("the viewing direction is zero"))?;
+
+        // A thin-lens camera's rays per pixel; a pinhole camera's count is ignored, as the files'
+        // renderers do (one ray through each pixel).
+        let lens_samples = if thin_lens {
+            cam.get_any(camera::LENS_SAMPLES)
+        } else {
+            cam.mark_read(camera::LENS_SAMPLES);
+            None
+        };
+        Ok((camera, exposure, lens_samples))
+    }
+
+    /// The camera's position, viewing direction, up hint, and the node that gave the direction:
+    /// from a camera-to-world matrix, or a position with a point looked at (or the 2021–23
+    /// skeleton's direction) and an up vector.
+    fn pose<'a, 't>(
+        &mut self,
+        cam: &Node<'a, 't>,
+    ) -> Result<(Vec3, Vec3, Vec3, Node<'a, 't>), SceneError> {
+        if let Some(m) = cam.get_any(camera::MATRIX) {
+            let (position, dir, up) = camera_to_world(&m)?;
+            return Ok((position, dir, up, m));
+        }
+        let position = opt_vec3(cam, camera::POSITION)?;
+        let look = cam.get_any(camera::LOOK);
         let direction = if let Some(n) = look.clone().filter(|n| n.key() == Some("lookat")) {
             // The 2021–23 skeleton's `lookat`, spelled just so, is a direction, not a point;
             // every other spelling (CGR's `lookAt`) is the point looked at. Some files write a
@@ -141,7 +165,7 @@ impl Loader<'_> {
         } else {
             None
         };
-        let up = opt_vec3(cam, &["up", "upVector", "vup", "camAxis"])?;
+        let up = opt_vec3(cam, camera::UP)?;
         let (position, dir, up, dir_node) = match (position, direction) {
             (None, None) => (Vec3::ZERO, -Vec3::Z, up.unwrap_or(Vec3::Y), cam.clone()),
             (p, Some((d, n))) => (p.unwrap_or(Vec3::ZERO), d, up.unwrap_or(Vec3::Y), n),
@@ -169,90 +193,138 @@ impl Loader<'_> {
             );
             Vec3::Z
         };
-
-        let exposure = match cam.get("exposure").or_else(|| root.get("exposure")) {
-            Some(n) => {
-                let e = n.f32()?;
-                if e < 0.0 {
-                    return Err(n.error(format!("exposure must be ≥ 0, found {e}")));
-                }
-                e
-            }
-            None => 1.0,
-        };
-
-        let lens = if thin_lens {
-            let radius = if let Some(r) = opt_f32(cam, LENS_RADIUS_KEYS)? {
-                Some(r)
-            } else if let Some(d) = opt_f32(cam, LENS_DIAMETER_KEYS)? {
-                Some(0.5 * d)
-            } else {
-                opt_f32(root, ROOT_DIAMETER_KEYS)?.map(|d| 0.5 * d)
-            };
-            let focus = match opt_f32(cam, FOCUS_KEYS)? {
-                Some(f) => Some(f),
-                None => opt_f32(root, ROOT_FOCUS_KEYS)?,
-            };
-            match radius {
-                Some(r) if r < 0.0 => {
-                    return Err(cam.error(format!("the aperture must be ≥ 0, found {r}")))
-                }
-                Some(r) if r > 0.0 => {
-                    let focus = match (focus, cam.peek("lookat").filter(|n| n.key() != Some("lookat")).or_else(|| cam.peek("target"))) {
-                        (Some(f), _) => f,
-                        // Without a focus distance, focus on the point looked at.
-                        (None, Some(_)) => dir.length(),
-                        (None, None) => {
-                            return Err(cam.error(
-                                "a thin-lens camera needs a focus distance ('focusdistance' or a spelling listed in docs/scene-format.md)",
-                            ))
-                        }
-                    };
-                    if focus <= 0.0 {
-                        return Err(
-                            cam.error(format!("the focus distance must be > 0, found {focus}"))
-                        );
-                    }
-                    Some(Lens {
-                        radius: r,
-                        focus_distance: focus,
-                    })
-                }
-                Some(_) => None,
-                None => {
-                    self.warn(
-                        cam,
-                        "a thin-lens camera without an aperture; rendering as a pinhole",
-                    );
-                    None
-                }
-            }
-        } else {
-            // A pinhole camera has no lens: its lens keys are known but have nothing to set.
-            for keys in [LENS_RADIUS_KEYS, LENS_DIAMETER_KEYS, FOCUS_KEYS] {
-                cam.mark_read(keys);
-            }
-            root.mark_read(ROOT_DIAMETER_KEYS);
-            root.mark_read(ROOT_FOCUS_KEYS);
-            None
-        };
-
-        let handedness = if is_cgr(root, cam) {
-            Handedness::UpCrossForward
-        } else {
-            Handedness::ForwardCrossUp
-        };
-        let camera = Camera::new(position, dir, up, handedness, width, height, fov_y, lens)
-            .ok_or_else(|| dir_node.error("the viewing direction is zero"))?;
-
-        // A thin-lens camera's rays per pixel; a pinhole camera's count is ignored, as the files'
-        // renderers do (one ray through each pixel).
-        let lens_samples = if thin_lens {
-            cam.get_any(LENS_SAMPLE_KEYS)
-        } else {
-            cam.mark_read(LENS_SAMPLE_KEYS);
-            None
-        };
-        Ok((camera, exposure, lens_samples))
+        Ok((position, dir, up, dir_node))
     }
+
+    /// The camera's lens, if it has one: a thin-lens camera's, or any camera's that gives an
+    /// aperture (docs/scene-format.md, "Camera"). `dir` is the viewing direction, whose length
+    /// is the focus distance of a camera that gives none but looks at a point.
+    fn lens(
+        &mut self,
+        root: &Node,
+        cam: &Node,
+        thin_lens: bool,
+        dir: Vec3,
+    ) -> Result<Option<Lens>, SceneError> {
+        // A real lens: focal length, image distance and f-number.
+        if cam.contains_any(&["focal", "focallength"]) && cam.contains_any(camera::IMAGE_DISTANCE) {
+            let (f, d) = (
+                cam.get_any(&["focal", "focallength"])
+                    .map_or(Ok(0.0), |n| n.f32())?,
+                cam.get_any(camera::IMAGE_DISTANCE)
+                    .map_or(Ok(0.0), |n| n.f32())?,
+            );
+            let n_node = required(cam, &["aperture", "fstop", "fnumber"])?;
+            let n = n_node.f32()?;
+            if !(f > 0.0 && d > f && n > 0.0) {
+                return Err(cam.error(format!(
+                    "a lens needs a focal length > 0, an image distance 'd' beyond it and an \
+                     f-number 'aperture' > 0; found {f}, {d} and {n}"
+                )));
+            }
+            cam.mark_read(camera::LENS_DIAMETER);
+            cam.mark_read(camera::FOCUS);
+            return Ok(Some(Lens {
+                radius: f / (2.0 * n),
+                focus_distance: f * d / (d - f),
+            }));
+        }
+        // A photographer's lens: focal length in millimetres and an f-number.
+        if let Some(n_node) = cam.get_any(camera::F_NUMBER) {
+            let n = n_node.f32()?;
+            let f = required(cam, &["focallength"])?.f32()?;
+            if !(f > 0.0 && n > 0.0) {
+                return Err(n_node.error(format!(
+                    "a lens needs a focal length > 0 (millimetres) and an f-number > 0; found \
+                     {f} and {n}"
+                )));
+            }
+            let focus = required(cam, &["focusdistance", "focaldistance", "focusdist"])?;
+            let focus_distance = focus.f32()?;
+            if focus_distance <= 0.0 {
+                return Err(focus.error(format!(
+                    "the focus distance must be > 0, found {focus_distance}"
+                )));
+            }
+            return Ok(Some(Lens {
+                radius: 0.001 * f / (2.0 * n),
+                focus_distance,
+            }));
+        }
+        let radius = if let Some(r) = opt_f32(cam, camera::LENS_RADIUS)? {
+            Some(r)
+        } else if let Some(d) = opt_f32(cam, camera::LENS_DIAMETER)? {
+            Some(0.5 * d)
+        } else if thin_lens {
+            opt_f32(root, &["aperture"])?.map(|d| 0.5 * d)
+        } else {
+            root.mark_read(&["aperture"]);
+            None
+        };
+        let focus = match opt_f32(cam, camera::FOCUS)? {
+            Some(f) => Some(f),
+            None if thin_lens => opt_f32(root, &["focusdistance"])?,
+            None => {
+                root.mark_read(&["focusdistance"]);
+                None
+            }
+        };
+        match radius {
+            Some(r) if r < 0.0 => Err(cam.error(format!("the aperture must be ≥ 0, found {r}"))),
+            Some(r) if r > 0.0 => {
+                let looks_at_point = cam
+                    .peek("lookat")
+                    .is_some_and(|n| n.key() != Some("lookat"))
+                    || cam.contains_any(&camera::LOOK[1..]);
+                let focus =
+                    match focus {
+                        Some(f) => f,
+                        // Without a focus distance, focus on the point looked at.
+                        None if looks_at_point => dir.length(),
+                        None => return Err(cam.error(
+                            "a camera with an aperture needs a focus distance ('focusdistance' \
+                             or a spelling listed in docs/scene-format.md)",
+                        )),
+                    };
+                if focus <= 0.0 {
+                    return Err(cam.error(format!("the focus distance must be > 0, found {focus}")));
+                }
+                Ok(Some(Lens {
+                    radius: r,
+                    focus_distance: focus,
+                }))
+            }
+            Some(_) => Ok(None),
+            None if thin_lens => {
+                self.warn(
+                    cam,
+                    "a thin-lens camera without an aperture; rendering as a pinhole",
+                );
+                Ok(None)
+            }
+            None => Ok(None),
+        }
+    }
+}
+
+/// Position, viewing direction and up of a camera given by its 4 × 4 camera-to-world matrix,
+/// written row by row with the translation in the last column, looking down its −z axis with
+/// +y up (the convention of the files that give one).
+fn camera_to_world(m: &Node) -> Result<(Vec3, Vec3, Vec3), SceneError> {
+    let v = m.numbers()?;
+    if v.len() != 16 {
+        return Err(m.error(format!(
+            "a camera-to-world matrix has 16 numbers, found {}",
+            v.len()
+        )));
+    }
+    let at = |r: usize, c: usize| v[4 * r + c] as f32;
+    let column = |c: usize| Vec3::new(at(0, c), at(1, c), at(2, c));
+    let (up, back, position) = (column(1), column(2), column(3));
+    if up.cross(back).length_squared() == 0.0 {
+        return Err(m.error(
+            "the camera-to-world matrix has no orientation (its axes are parallel or zero)",
+        ));
+    }
+    Ok((position, -back, up))
 }

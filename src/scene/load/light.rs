@@ -1,7 +1,8 @@
 //! Lights: points, ambient terms, and area lights of every shape.
 
 use super::shape::{quad_edges, right_angle_corner};
-use super::{nearest, non_negative_color, opt_f32, required, Loader};
+use super::spellings::{light, type_names, type_of, LIGHT_TYPES};
+use super::{nearest, non_negative_color, opt_f32, positive, required, Loader};
 use crate::light::{Falloff, Intensity, Light};
 use crate::math::Vec3;
 use crate::sampling::Method;
@@ -9,7 +10,9 @@ use crate::scene::json::Node;
 use crate::scene::lights;
 use crate::scene::{RenderMode, SceneError, Variant};
 
-const LIGHT_TYPES: &[&str] = &["pointlight", "arealight"];
+/// Sides of the polygon a disc light is sampled as: its area is the disc's, and its outline
+/// strays from the circle by under 0.2% of the radius.
+const DISC_SIDES: usize = 64;
 
 impl Loader<'_> {
     pub(super) fn light(&mut self, l: &Node) -> Result<(), SceneError> {
@@ -17,34 +20,107 @@ impl Loader<'_> {
             return Err(l.error(format!("a light is an object, found {}", l.kind())));
         }
         let type_node = required(l, &["type"])?;
-        let kind = type_node.str()?.to_ascii_lowercase();
-        match kind.as_str() {
-            "pointlight" | "point" | "point_light" => {
+        let name = type_node.str()?;
+        match type_of(LIGHT_TYPES, name) {
+            Some("point") if l.contains_any(light::AXIS_U) && l.contains_any(light::AXIS_V) => {
+                self.warn(
+                    &type_node,
+                    "a point light with edges 'u' and 'v' is read as an area light centred on \
+                     its position",
+                );
                 let intensity = self.intensity(l)?;
-                let position = required(l, &["position", "pos"])?.vec3()?;
+                self.area_light(l, intensity)?
+            }
+            Some("point") => {
+                let intensity = self.intensity(l)?;
+                let position = required(l, light::POSITION)?.vec3()?;
                 self.lights.push(Light::Point {
                     position,
                     intensity,
                 });
             }
-            "ambient" | "ambientlight" => {
+            Some("ambient") => {
                 let n = required(l, &["intensity", "color", "colour"])?;
                 let a = non_negative_color(&n)?;
                 self.ambient = Some(self.ambient.unwrap_or(Vec3::ZERO) + a);
             }
-            "arealight" | "area" | "area_light" | "quadlight" => {
+            Some("sphere") => {
+                let intensity = self.intensity(l)?;
+                self.sphere_light(l, intensity)?
+            }
+            Some("disc") => {
+                let intensity = self.intensity(l)?;
+                self.disc_light(l, intensity)?
+            }
+            Some(_) => {
                 let intensity = self.intensity(l)?;
                 self.area_light(l, intensity)?
             }
-            other => {
-                let near = nearest(other, LIGHT_TYPES);
+            None => {
+                let near = nearest(name, &type_names(LIGHT_TYPES));
                 l.mark_all_read(); // skipped whole, with this warning
                 self.warn(
                     &type_node,
-                    format!("unknown light type '{other}' (nearest known: '{near}'); skipped"),
+                    format!("unknown light type '{name}' (nearest known: '{near}'); skipped"),
                 );
             }
         }
+        Ok(())
+    }
+
+    /// A ball of light: a centre and a radius.
+    fn sphere_light(&mut self, l: &Node, intensity: Intensity) -> Result<(), SceneError> {
+        let center = required(l, light::POSITION)?.vec3()?;
+        let radius = positive(l, "radius")?;
+        let (samples, method) = self.area_sampling(l)?;
+        self.lights.push(Light::Sphere {
+            center,
+            radius,
+            intensity,
+            samples,
+            method,
+            surface: 0..0,
+        });
+        Ok(())
+    }
+
+    /// A flat disc of light: a centre, a radius and the normal it faces (default −y, a ceiling
+    /// light), sampled as a fan of [`DISC_SIDES`] triangles of the disc's own area.
+    fn disc_light(&mut self, l: &Node, intensity: Intensity) -> Result<(), SceneError> {
+        let center = required(l, light::POSITION)?.vec3()?;
+        let radius = positive(l, "radius")?;
+        let normal = match l.get_any(light::NORMAL) {
+            Some(n) => {
+                let v = n.vec3()?;
+                if v.length_squared() == 0.0 || !v.is_finite() {
+                    return Err(n.error("a disc light's normal must be a finite non-zero vector"));
+                }
+                v.normalize()
+            }
+            None => Vec3::NEG_Y,
+        };
+        let (a, b) = crate::math::orthonormal_basis(normal);
+        // The polygon's corners lie farther out than the circle by the factor that gives it
+        // the circle's area: n/2 · R² · sin(2π/n) = π r².
+        let n = DISC_SIDES as f32;
+        let step = std::f32::consts::TAU / n;
+        let r = radius * (std::f32::consts::TAU / (n * step.sin())).sqrt();
+        let corner = |k: usize| {
+            let t = step * k as f32;
+            center + r * (t.cos() * a + t.sin() * b)
+        };
+        let triangles: Vec<[Vec3; 3]> = (0..DISC_SIDES)
+            .map(|k| [center, corner(k), corner(k + 1)])
+            .collect();
+        let (samples, method) = self.area_sampling(l)?;
+        self.lights.push(Light::Triangles {
+            cumulative_area: crate::light::cumulative_areas(&triangles),
+            triangles,
+            intensity,
+            samples,
+            method,
+            surface: 0..0,
+        });
         Ok(())
     }
 
@@ -56,8 +132,28 @@ impl Loader<'_> {
         let is = l.get("is").map(|n| n.color()).transpose()?;
         let id = l.get("id").map(|n| n.color()).transpose()?;
         if is.is_some() || id.is_some() {
-            let s = is.or(id).unwrap_or(Vec3::ONE);
-            let d = id.or(is).unwrap_or(Vec3::ONE);
+            let mut s = is.or(id).unwrap_or(Vec3::ONE);
+            let mut d = id.or(is).unwrap_or(Vec3::ONE);
+            // With an `intensity` beside them, `is` and `id` give the colours (on any scale:
+            // the brightest channel counts as 1) and `intensity` the strength.
+            if let Some(n) = l.get_any(light::INTENSITY) {
+                let strength = n.f32()?;
+                if !(strength >= 0.0 && strength.is_finite()) {
+                    return Err(n.error(format!(
+                        "a light's intensity must be a finite number ≥ 0, found {strength}"
+                    )));
+                }
+                let unit = |c: Vec3| {
+                    let m = c.max_element();
+                    if m > 0.0 {
+                        c / m
+                    } else {
+                        c
+                    }
+                };
+                s = unit(s) * strength;
+                d = unit(d) * strength;
+            }
             return Ok(Intensity {
                 diffuse: d,
                 specular: s,
@@ -66,7 +162,7 @@ impl Loader<'_> {
                 }),
             });
         }
-        let base = match l.get_any(&["intensity", "power"]) {
+        let base = match l.get_any(light::INTENSITY) {
             Some(n) => n.color()?,
             None => Vec3::ONE,
         };
@@ -135,6 +231,7 @@ impl Loader<'_> {
     /// `shape`, or the scene shape its `shapeid` names (resolved after the shapes are read).
     pub(super) fn area_light(&mut self, l: &Node, intensity: Intensity) -> Result<(), SceneError> {
         let corner = |k: &str| l.get(k).map(|n| n.vec3()).transpose();
+        let any = |k: &[&str]| l.get_any(k).map(|n| n.vec3()).transpose();
         let (origin, edge_u, edge_v) = if let (Some(a), Some(b), Some(c)) =
             (corner("v0")?, corner("v1")?, corner("v2")?)
         {
@@ -144,11 +241,17 @@ impl Loader<'_> {
             }
         } else if let (Some(a), Some(b), Some(c)) = (corner("c1")?, corner("c2")?, corner("c3")?) {
             right_angle_corner(a, b, c)
-        } else if let (Some(p), Some(e0), Some(e1)) = (corner("p")?, corner("e0")?, corner("e1")?) {
+        } else if let (Some(p), Some(e0), Some(e1)) = (
+            any(light::CORNER)?,
+            any(light::EDGE_1)?,
+            any(light::EDGE_2)?,
+        ) {
             (p, e0, e1)
-        } else if let (Some(p), Some(u), Some(v)) =
-            (corner("position")?, corner("u")?, corner("v")?)
-        {
+        } else if let (Some(p), Some(u), Some(v)) = (
+            any(light::POSITION)?,
+            any(light::AXIS_U)?,
+            any(light::AXIS_V)?,
+        ) {
             // Centred on `position`; with `width`/`height` the edges are `u`, `v` scaled to those
             // lengths, otherwise `u` and `v` are the edges.
             let w = opt_f32(l, &["width"])?;
@@ -162,7 +265,7 @@ impl Loader<'_> {
                 None => v,
             };
             (p - 0.5 * eu - 0.5 * ev, eu, ev)
-        } else if let (Some(p), Some(size)) = (corner("position")?, l.get("size")) {
+        } else if let (Some(p), Some(size)) = (any(light::POSITION)?, l.get("size")) {
             let (sw, sh) = match size.numbers() {
                 Ok(v) if v.len() == 2 => (v[0] as f32, v[1] as f32),
                 _ => {
@@ -174,6 +277,9 @@ impl Loader<'_> {
             let eu = Vec3::X * sw;
             let ev = Vec3::Z * sh;
             (p - 0.5 * eu - 0.5 * ev, eu, ev)
+        } else if l.contains_any(light::POSITION) && l.contains_any(light::RADIUS) {
+            // A centre and a radius: a ball of light.
+            return self.sphere_light(l, intensity);
         } else if let Some(shape) = l.get("shape") {
             return self.shaped_area_light(l, &shape, intensity);
         } else if let Some(id) = l.get("shapeid") {
@@ -186,11 +292,11 @@ impl Loader<'_> {
                 intensity,
             });
             return Ok(());
-        } else if let (Some(p), RenderMode::Path) = (corner("position")?, self.mode) {
+        } else if let (Some(p), RenderMode::Path) = (any(light::POSITION)?, self.mode) {
             // The one renderer whose path-tracing files give area lights only a position makes
             // them 1 × 1 squares spanning x and y, centred there (docs/scene-format.md).
             (p - 0.5 * (Vec3::X + Vec3::Y), Vec3::X, Vec3::Y)
-        } else if let Some(p) = corner("position")? {
+        } else if let Some(p) = any(light::POSITION)? {
             self.warn(
                 l,
                 format!(
@@ -207,7 +313,7 @@ impl Loader<'_> {
         } else {
             return Err(l.error(
                 "an area light needs corners 'v0'..'v3' (or 'p'+'e0'+'e1', 'position'+'u'+'v', \
-                 a 'shape' or a 'shapeid')",
+                 'position'+'radius', a 'shape' or a 'shapeid')",
             ));
         };
         let (samples, method) = self.area_sampling(l)?;
@@ -289,8 +395,11 @@ impl Loader<'_> {
     /// An area light's shadow rays per shading point and their placement: `method` (default
     /// jittered) and `samples` (default 4; the grid's side for jittered, the total otherwise).
     pub(super) fn area_sampling(&mut self, l: &Node) -> Result<(u32, Method), SceneError> {
-        let method = self.sampling_method(l)?.unwrap_or(Method::Jittered);
-        let samples_node = l.get_any(&["samples", "nsamples", "samplesize", "cell"]);
+        let method = self
+            .sampling_method(l)?
+            .or(self.method)
+            .unwrap_or(Method::Jittered);
+        let samples_node = l.get_any(light::SAMPLES);
         let samples = match &samples_node {
             Some(n) => n.u32()?.max(1),
             None => 4,

@@ -1,32 +1,13 @@
 //! Materials: the Blinn-Phong keys, the physically based types, emission.
 
-use super::texture::{Libraries, TEXTURE_KEYS};
-use super::{opt_f32, Loader, DEFAULT_ETA};
+use super::spellings::texture;
+use super::spellings::{material, type_names, type_of, MATERIAL_TYPES};
+use super::texture::Libraries;
+use super::{nearest, opt_f32, Loader, DEFAULT_ETA};
 use crate::material::{roughness_exponent, Material};
 use crate::math::Vec3;
 use crate::scene::json::Node;
 use crate::scene::{RenderMode, SceneError};
-
-/// Material `type`s the loader knows: the Blinn-Phong model the other keys describe, and the
-/// physically based forms of path-tracing files (see `Loader::material_kind`).
-const MATERIAL_TYPES: &[&str] = &[
-    "phong",
-    "blinnphong",
-    "blinn-phong",
-    "blinn_phong",
-    "diffuse",
-    "lambertian",
-    "matte",
-    "metal",
-    "conductor",
-    "mirror",
-    "dielectric",
-    "glass",
-    "emissive",
-    "emitter",
-    "light",
-    "emission",
-];
 
 impl Loader<'_> {
     pub(super) fn material(
@@ -71,60 +52,54 @@ impl Loader<'_> {
             if let Some(v) = opt_f32(n, &["ks"])? {
                 m.ks = v;
             }
-            if let Some(v) = opt_f32(
-                n,
-                &[
-                    "specularexponent",
-                    "specular_exponent",
-                    "shininess",
-                    "exponent",
-                    "alpha",
-                ],
-            )? {
+            if let Some(v) = opt_f32(n, material::EXPONENT)? {
                 if v < 0.0 {
                     return Err(n.error(format!("the specular exponent must be ≥ 0, found {v}")));
                 }
                 m.exponent = v;
             }
-            if let Some(c) = n.get_any(&[
-                "diffusecolor",
-                "diffusecolour",
-                "diffuse_color",
-                "color",
-                "colour",
-            ]) {
+            if let Some(c) = n.get_any(material::DIFFUSE) {
                 m.diffuse = c.color()?;
             } else if let Some(c) = n.get("diffuse").filter(|c| c.str().is_err()) {
                 m.diffuse = c.color()?; // `diffuse` as a string is a texture (below)
             }
-            if let Some(c) = n.get_any(&["specularcolor", "specularcolour", "specular_color"]) {
+            if let Some(c) = n.get_any(material::SPECULAR) {
                 m.specular = c.color()?;
             }
             let reflective = n
-                .get_any(&["isreflective", "isReflective"])
+                .get_any(material::IS_REFLECTIVE)
                 .map(|b| b.bool())
                 .transpose()?;
-            if let Some(v) = opt_f32(n, &["kr", "reflectivity", "reflection", "reflectance"])? {
+            let kr_node = n.get_any(material::KR);
+            if let Some(t) = kr_node.as_ref().filter(|k| k.str().is_ok()) {
+                self.warn(
+                    t,
+                    format!(
+                        "a mirror weight from a texture ('{}') is not supported; the material \
+                         has no mirror",
+                        t.str()?
+                    ),
+                );
+            }
+            let kr = kr_node
+                .filter(|k| k.str().is_err())
+                .map(|k| k.f32())
+                .transpose()?;
+            if let Some(v) = kr {
                 m.kr = if reflective == Some(false) { 0.0 } else { v };
             } else if reflective == Some(true) {
                 m.kr = 1.0;
             }
             let refractive = n
-                .get_any(&["isrefractive", "isRefractive", "isGlass"])
+                .get_any(material::IS_REFRACTIVE)
                 .map(|b| b.bool())
                 .transpose()?;
-            if let Some(v) = opt_f32(n, &["kt", "transparency", "transmit", "transmittance"])? {
+            if let Some(v) = opt_f32(n, material::KT)? {
                 m.kt = if refractive == Some(false) { 0.0 } else { v };
             } else if refractive == Some(true) {
                 m.kt = 1.0;
             }
-            let eta_node = n.get_any(&[
-                "eta",
-                "refractiveindex",
-                "refractiveIndex",
-                "refractive_index",
-                "ior",
-            ]);
+            let eta_node = n.get_any(material::ETA);
             m.eta = match &eta_node {
                 Some(e) => e.f32()?,
                 None => DEFAULT_ETA,
@@ -143,6 +118,7 @@ impl Loader<'_> {
             }
             // A metal's roughness is its own (see `material_kind`); any other material's blurs
             // its mirror part.
+            Self::emission(n, &mut m)?;
             let roughness_read = own_material && self.material_kind(n, &mut m)?;
             if let Some(r) = n.get("roughness").filter(|_| !roughness_read) {
                 m.mirror_exponent = self.mirror_roughness(&r, m.kr)?;
@@ -157,18 +133,23 @@ impl Loader<'_> {
         }
         node.iter()
             .chain([s])
-            .for_each(|n| n.mark_read(&TEXTURE_KEYS)); // known in every mode
+            .for_each(|n| n.mark_read(texture::TEXTURE)); // known in every mode
         if let Some(n) = &node {
             n.mark_read(&["diffuse"]);
         }
-        if mode != RenderMode::Binary {
+        // A switch that turns the texture off leaves the diffuse colour alone.
+        let switched_on = match node.as_ref().and_then(|n| n.get_any(texture::SWITCH)) {
+            Some(b) => b.bool()?,
+            None => true,
+        };
+        if mode != RenderMode::Binary && switched_on {
             let tex_node = node
                 .as_ref()
                 .and_then(|n| {
-                    n.get_any(&TEXTURE_KEYS)
+                    n.get_any(texture::TEXTURE)
                         .or_else(|| n.get("diffuse").filter(|d| d.str().is_ok()))
                 })
-                .or_else(|| s.get_any(&TEXTURE_KEYS));
+                .or_else(|| s.get_any(texture::TEXTURE));
             if let Some(t) = tex_node {
                 m.texture = self.texture(&t, libraries)?;
             }
@@ -195,37 +176,56 @@ impl Loader<'_> {
         Ok(roughness_exponent(alpha * alpha))
     }
 
-    /// The physically based material forms path-tracing files use (`"type"` with `albedo`,
-    /// `roughness`, `ior`, an emitted `colour` × `intensity`), and `emittance` on any material:
-    /// see `docs/scene-format.md`, "Material types". Returns whether the type read `roughness`
-    /// as its own (a metal's).
-    pub(super) fn material_kind(&mut self, n: &Node, m: &mut Material) -> Result<bool, SceneError> {
-        if let Some(e) = n.get("emittance") {
-            m.emission = e.color()?;
+    /// The radiance any material may emit: a colour, or a number that scales the diffuse
+    /// colour.
+    fn emission(n: &Node, m: &mut Material) -> Result<(), SceneError> {
+        if let Some(e) = n.get_any(material::EMISSION) {
+            m.emission = match e.f32() {
+                Ok(strength) => strength * m.diffuse,
+                Err(_) => e.color()?,
+            };
+            if !(m.emission.min_element() >= 0.0 && m.emission.is_finite()) {
+                return Err(e.error("emitted radiance must be finite and ≥ 0"));
+            }
         }
-        let Some(t) = n.peek("type") else {
+        Ok(())
+    }
+
+    /// The physically based forms of a material's `type` (`albedo`, `roughness`, `ior`, an
+    /// emitted `colour` × `intensity`): see `docs/scene-format.md`, "Material types". Returns
+    /// whether the type read `roughness` as its own (a metal's).
+    pub(super) fn material_kind(&mut self, n: &Node, m: &mut Material) -> Result<bool, SceneError> {
+        let Some(t) = n.get("type") else {
             return Ok(false);
         };
-        let Ok(kind) = t.str().map(str::to_ascii_lowercase) else {
-            return Ok(false); // not a type name: left for the unknown-key warning
+        let name = t.str()?;
+        let Some(kind) = type_of(MATERIAL_TYPES, name) else {
+            self.warn(
+                &t,
+                format!(
+                    "unknown material type '{name}' (nearest known: '{}'); shaded as Phong from \
+                     its other keys",
+                    nearest(name, &type_names(MATERIAL_TYPES))
+                ),
+            );
+            return Ok(false);
         };
-        if !MATERIAL_TYPES.contains(&kind.as_str()) {
-            return Ok(false); // a model of another renderer: left for the unknown-key warning
-        }
-        n.mark_read(&["type"]);
-        let albedo = match n.get("albedo") {
-            Some(a) => Some(a.color()?),
-            None => None,
-        };
-        match kind.as_str() {
-            "diffuse" | "lambertian" | "matte" => {
-                m.kd = 1.0;
-                m.ks = 0.0;
-                m.diffuse = albedo.unwrap_or(m.diffuse);
+        match kind {
+            "diffuse" => {
+                // The type's defaults, where the file gives no weight of its own.
+                if n.peek("kd").is_none() {
+                    m.kd = 1.0;
+                }
+                if n.peek("ks").is_none() {
+                    m.ks = 0.0;
+                }
             }
-            "metal" | "conductor" | "mirror" => {
-                let tint = albedo.unwrap_or(m.specular);
-                let roughness = match n.get_any(&["roughness", "fuzz"]) {
+            "metal" => {
+                let tint = match n.get_any(material::METAL_COLOUR) {
+                    Some(c) => c.color()?,
+                    None => m.specular,
+                };
+                let roughness = match n.get_any(material::ROUGHNESS) {
                     Some(r) => {
                         let v = r.f32()?;
                         if !(0.0..=1.0).contains(&v) {
@@ -249,12 +249,15 @@ impl Loader<'_> {
                 }
                 return Ok(true);
             }
-            "dielectric" | "glass" => {
+            "glass" => {
                 m.kd = 0.0;
                 m.ks = 0.0;
                 m.kt = 1.0;
+                if let Some(c) = n.get_any(material::TRANSMIT_COLOUR) {
+                    m.transmit = c.color()?;
+                }
             }
-            "emissive" | "emitter" | "light" | "emission" => {
+            "emissive" => {
                 let colour = match n.get_any(&["colour", "color", "emission", "emittance"]) {
                     Some(c) => c.color()?,
                     None => Vec3::ONE,

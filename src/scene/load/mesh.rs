@@ -1,6 +1,7 @@
 //! Meshes: from a mesh file, a procedural sphere, or vertices and faces written in the scene.
 
 use super::required;
+use super::spellings::{type_of, SHAPE_TYPES};
 use super::Loader;
 use crate::geometry::MeshUv;
 use crate::math::Vec2;
@@ -40,6 +41,24 @@ impl Loader<'_> {
             };
             let mut data =
                 read_mesh_with(&path, &limits).map_err(|e| fnode.error(e.to_string()))?;
+            // Counts the scene repeats from the file's header (`vs`, `fs`) must agree with it.
+            for (key, what, count) in [
+                ("vs", "vertices", data.positions.len()),
+                ("fs", "faces", data.faces.len()),
+            ] {
+                if let Some(n) = s.get(key) {
+                    let said = n.u32()?;
+                    if said as usize != count && (key == "vs" || said as usize > count) {
+                        self.warn(
+                            &n,
+                            format!(
+                                "the scene says the mesh has {said} {what}, its file {count}; \
+                                 the file's are used"
+                            ),
+                        );
+                    }
+                }
+            }
             // PLY and OBJ files put v = 0 at the bottom of the image (the OpenGL convention of
             // the tools that write them); textures here have v = 0 at the top row.
             if let Some(uvs) = data.uvs.as_mut() {
@@ -65,7 +84,7 @@ impl Loader<'_> {
     /// `numVerticesOnEachFace` (polygon sizes, their count in `faces`) and `texturemap`
     /// (per-vertex uv); `points` alone (consecutive triples when the count is a multiple of 3,
     /// otherwise one convex polygon).
-    pub(super) fn inline_mesh(&self, s: &Node) -> Result<MeshData, SceneError> {
+    pub(super) fn inline_mesh(&mut self, s: &Node) -> Result<MeshData, SceneError> {
         let mut positions = Vec::new();
         let counted = s
             .get("vertex")
@@ -81,7 +100,22 @@ impl Loader<'_> {
         {
             // A list of triangle objects, each with its corners.
             let mut faces = Vec::new();
+            let mesh_material = s.peek("material").and_then(|m| m.str().ok());
             for t in list.elements()? {
+                // Each may say it is a triangle and name the mesh's material again.
+                if let Some(k) = t.get("type") {
+                    if type_of(SHAPE_TYPES, k.str()?) != Some("triangle") {
+                        return Err(k.error("a mesh's triangles are triangles"));
+                    }
+                }
+                if let Some(m) = t.get("material") {
+                    if m.str().ok() != mesh_material {
+                        self.warn(
+                            &m,
+                            "a triangle of a mesh has a material of its own; the mesh's is used",
+                        );
+                    }
+                }
                 let n = positions.len() as u32;
                 for k in ["v0", "v1", "v2"] {
                     positions.push(required(&t, &[k])?.vec3()?);

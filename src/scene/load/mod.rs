@@ -18,6 +18,7 @@ mod light;
 mod material;
 mod mesh;
 mod shape;
+pub mod spellings;
 mod texture;
 
 use std::collections::HashMap;
@@ -87,7 +88,7 @@ pub struct LoadOptions {
     pub max_texture_pixels: u64,
     /// Largest mesh file accepted, in bytes.
     pub max_mesh_bytes: u64,
-    /// Memory the mesh files may take, all together, in bytes ([`MeshLimits::max_memory`]):
+    /// Memory the mesh files may take, all together, in bytes ([`MeshLimits::max_memory`](crate::scene::mesh_file::MeshLimits::max_memory)):
     /// the command line gives what the process can have ([`crate::memory::available`]) unless
     /// `--max-memory` says otherwise. `None` (the default): not checked.
     pub max_memory: Option<u64>,
@@ -164,26 +165,15 @@ pub fn load_str(text: &str, path: &Path, options: &LoadOptions) -> Result<Scene,
         variant: Variant::V2021,
         mode: RenderMode::Phong,
         emitters: Emitters::default(),
+        method: None,
         triangles: 0,
         inputs: Vec::new(),
     };
     loader.scene(&root)
 }
 
-const SHAPE_LIST_KEYS: &[&str] = &["shapes", "objects", "geometry"];
-const LIGHT_LIST_KEYS: &[&str] = &["lightsources", "lights", "lightSources"];
-/// Top-level samples per pixel (each the total per pixel; `sample_number` also sets the light
-/// samples). The evidence for each is in docs/scene-format.md.
-const PIXEL_SAMPLE_KEYS: &[&str] = &[
-    "pixelsample",
-    "pixel_sample_num",
-    "nspp",
-    "camera samples",
-    "nsamples",
-    "sample_number",
-];
-/// Top-level shadow rays per area light and shading point (the total).
-const LIGHT_SAMPLE_KEYS: &[&str] = &["lightsample", "shadow samples", "spp", "sample_number"];
+/// A tone map named by the file (a camera's or the top level's).
+const TONE_MAP_KEYS: &[&str] = &["tone_mapping", "tonemapper", "tonemap"];
 
 struct Loader<'o> {
     options: &'o LoadOptions,
@@ -200,6 +190,9 @@ struct Loader<'o> {
     variant: Variant,
     /// The file's `rendermode` (read first).
     mode: RenderMode,
+    /// How samples are placed where the file says so for all at once (`use_jitter_sample`, a
+    /// top-level `sampling`).
+    method: Option<Method>,
     /// Area lights whose surface is a shape of the scene, resolved after the shapes are read.
     emitters: Emitters,
     triangles: usize,
@@ -302,7 +295,13 @@ impl Loader<'_> {
         self.variant = variant;
         self.mode = mode;
         let (camera, exposure, lens_samples) = self.camera(root, &camera_node)?;
-        let pixel_method = self.sampling_method(&camera_node)?;
+        // How the whole file's samples are placed, unless a camera or a light says otherwise.
+        self.method = match root.get_any(spellings::scene::JITTER) {
+            Some(n) if n.bool()? => Some(Method::Jittered),
+            Some(_) => Some(Method::Random),
+            None => self.sampling_method(root)?,
+        };
+        let pixel_method = self.sampling_method(&camera_node)?.or(self.method);
         // Hit/miss images are not exposed: a hit is full red whatever the camera says.
         let exposure = if mode == RenderMode::Binary {
             1.0
@@ -310,7 +309,7 @@ impl Loader<'_> {
             exposure
         };
 
-        let nbounces = match root.get_any(&["nbounces", "maxdepth", "max_depth"]) {
+        let nbounces = match root.get_any(spellings::scene::BOUNCES) {
             None => DEFAULT_NBOUNCES,
             Some(n) => {
                 let v = n.f64()?;
@@ -330,7 +329,11 @@ impl Loader<'_> {
         let scene_node = match root.get("scene") {
             Some(n) => n,
             // Some files put the scene's lists at the top level.
-            None if root.has_any(SHAPE_LIST_KEYS) || root.has_any(LIGHT_LIST_KEYS) => root.clone(),
+            None if root.has_any(spellings::scene::SHAPE_LISTS)
+                || root.has_any(spellings::scene::LIGHT_LISTS) =>
+            {
+                root.clone()
+            }
             None => return Err(root.error(
                 "nothing to render: no 'scene' object (nor top-level 'shapes' or 'lightsources')",
             )),
@@ -340,23 +343,28 @@ impl Loader<'_> {
                 scene_node.error(format!("expected an object, found {}", scene_node.kind()))
             );
         }
-        let background =
-            match scene_node.get_any(&["backgroundcolor", "backgroundcolour", "background"]) {
-                Some(n) => n.color()?,
-                None => Vec3::ZERO,
-            };
-        if let Some(n) = scene_node.get_any(&["ambientlight", "ambientintensity", "ambient"]) {
+        // One renderer's count of rays per rough reflection: here each camera sample traces one.
+        if !std::ptr::eq(scene_node.value, root.value) {
+            if let Some(n) = scene_node.get("nsamples") {
+                n.u32()?;
+            }
+        }
+        let background = match scene_node.get_any(spellings::scene::BACKGROUND) {
+            Some(n) => n.color()?,
+            None => Vec3::ZERO,
+        };
+        if let Some(n) = scene_node.get_any(spellings::scene::AMBIENT) {
             self.ambient = Some(non_negative_color(&n)?);
         }
         let mut listed = 0;
-        if let Some(lights) = scene_node.get_any(LIGHT_LIST_KEYS) {
+        if let Some(lights) = scene_node.get_any(spellings::scene::LIGHT_LISTS) {
             for l in lights.elements()? {
                 listed += 1;
                 self.light(&l)?;
             }
         }
         let mut libraries = Libraries::read(&[root, &scene_node])?;
-        if let Some(shapes) = scene_node.get_any(SHAPE_LIST_KEYS) {
+        if let Some(shapes) = scene_node.get_any(spellings::scene::SHAPE_LISTS) {
             for s in shapes.elements()? {
                 listed += 1;
                 let first = self.primitives.len();
@@ -445,7 +453,13 @@ impl Loader<'_> {
             }
             Ok(v)
         };
-        let pixel = match root.get_any(PIXEL_SAMPLE_KEYS).or(lens_samples) {
+        let settings = root.get("settings").filter(|n| n.is_object());
+        let pixel = match root
+            .get_any(spellings::scene::PIXEL_SAMPLES)
+            .or(lens_samples)
+            .or_else(|| settings.and_then(|st| st.get("samples")))
+            .or_else(|| root.get("sampling").filter(|n| n.f64().is_ok()))
+        {
             Some(n) => Some(count(
                 &n,
                 "samples per pixel",
@@ -454,7 +468,7 @@ impl Loader<'_> {
             )?),
             None => None,
         };
-        let light = match root.get_any(LIGHT_SAMPLE_KEYS) {
+        let light = match root.get_any(spellings::scene::LIGHT_SAMPLES) {
             Some(n) => Some(count(
                 &n,
                 "shadow rays per area light",
@@ -515,6 +529,17 @@ impl Loader<'_> {
                 }
             }
         }
+        // A tone map named in the camera or at the top level (`"tone_mapping": "aces"`).
+        let named = root
+            .get("camera")
+            .and_then(|c| c.get_any(TONE_MAP_KEYS))
+            .or_else(|| root.get_any(TONE_MAP_KEYS));
+        if let Some(n) = named {
+            match n.str()?.parse::<ToneMap>() {
+                Ok(map) => return Ok(Some(map)),
+                Err(e) => self.warn(&n, format!("{e}; the default tone map is used")),
+            }
+        }
         match root.get("use_tone_mapping") {
             Some(n) if n.bool()? => Ok(Some(ToneMap::Reinhard)),
             _ => Ok(None),
@@ -523,12 +548,15 @@ impl Loader<'_> {
 
     /// A sampling method named by `method`, `sampler` or `sampling` in `node`, if any.
     fn sampling_method(&mut self, node: &Node) -> Result<Option<Method>, SceneError> {
-        let Some(n) = node.get_any(&["method", "sampler", "sampling"]) else {
+        let Some(n) = node.get_any(spellings::scene::SAMPLER) else {
             return Ok(None);
         };
+        if n.f64().is_ok() {
+            return Ok(None); // a count (a top-level `sampling`: samples per pixel)
+        }
         Ok(Some(match n.str()?.to_ascii_lowercase().as_str() {
             "random" | "uniform" => Method::Random,
-            "jittered" | "stratified" | "jitter" => Method::Jittered,
+            "jittered" | "stratified" | "jitter" | "jittering" | "grid" => Method::Jittered,
             "sobol" => Method::Sobol,
             other => {
                 self.warn(

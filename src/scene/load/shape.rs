@@ -1,5 +1,6 @@
 //! Shapes: spheres, cylinders, triangles, quads, planes, boxes and the meshes they become.
 
+use super::spellings::{shape, type_names, type_of, SHAPE_TYPES};
 use super::texture::Libraries;
 use super::{nearest, positive, required, Loader, SPHERE_POLE, SPHERE_SEAM};
 use crate::accel::aabb::Aabb;
@@ -8,24 +9,6 @@ use crate::math::{Vec2, Vec3};
 use crate::scene::json::Node;
 use crate::scene::transform::{self, Affine};
 use crate::scene::{rectangle, RenderMode, SceneError};
-
-const SHAPE_TYPES: &[&str] = &[
-    "sphere",
-    "plane",
-    "planarquad",
-    "quad",
-    "rectangle",
-    "triangle",
-    "trimesh",
-    "mesh",
-    "ply",
-    "trianglemesh",
-    "cylinder",
-    "box",
-    "rectanglexy",
-    "rectanglexz",
-    "rectangleyz",
-];
 
 impl Loader<'_> {
     pub(super) fn shape(
@@ -38,50 +21,28 @@ impl Loader<'_> {
             return Err(s.error(format!("a shape is an object, found {}", s.kind())));
         }
         let type_node = required(s, &["type"])?;
-        let kind = type_node.str()?.to_ascii_lowercase();
-        let known = matches!(
-            kind.as_str(),
-            "sphere"
-                | "uvsphere"
-                | "plane"
-                | "planarquad"
-                | "planerquad"
-                | "quad"
-                | "rectangle"
-                | "triangle"
-                | "trimesh"
-                | "mesh"
-                | "ply"
-                | "trianglemesh"
-                | "tris"
-                | "cylinder"
-                | "uvcylinder"
-                | "box"
-                | "rectanglexy"
-                | "rectanglexz"
-                | "rectangleyz"
-        );
-        if !known {
-            let near = nearest(&kind, SHAPE_TYPES);
+        let name = type_node.str()?;
+        let Some(kind) = type_of(SHAPE_TYPES, name) else {
+            let near = nearest(name, &type_names(SHAPE_TYPES));
             s.mark_all_read(); // skipped whole, with this warning
             self.warn(
                 &type_node,
-                format!("unknown shape type '{kind}' (nearest known: '{near}'); skipped"),
+                format!("unknown shape type '{name}' (nearest known: '{near}'); skipped"),
             );
             return Ok(());
-        }
+        };
         let material = self.material(s, mode, libraries)?;
-        match kind.as_str() {
-            "sphere" | "uvsphere" => {
-                let center = required(s, &["center", "centre", "position"])?.vec3()?;
+        match kind {
+            "sphere" => {
+                let center = required(s, shape::CENTRE)?.vec3()?;
                 let radius = positive(s, "radius")?;
                 self.primitives.push(Primitive {
                     shape: Shape::Sphere(Sphere::new(center, radius, SPHERE_POLE, SPHERE_SEAM)),
                     material,
                 });
             }
-            "cylinder" | "uvcylinder" => {
-                let center = required(s, &["center", "centre", "position"])?.vec3()?;
+            "cylinder" => {
+                let center = required(s, shape::CENTRE)?.vec3()?;
                 let an = required(s, &["axis"])?;
                 let axis = an.vec3()?;
                 if axis.length_squared() == 0.0 {
@@ -108,7 +69,7 @@ impl Loader<'_> {
                 });
                 self.add_mesh(s, p, None, MeshUv::PerVertex(uv), vec![[0, 1, 2]], material)?;
             }
-            "plane" | "planarquad" | "planerquad" | "quad" | "rectangle" => {
+            "quad" => {
                 let has_corners =
                     s.contains_any(&["v0", "v1", "point1", "p0", "points", "vertices", "corner1"]);
                 if s.contains_any(&["normal", "distance"]) && !has_corners {
@@ -186,7 +147,7 @@ impl Loader<'_> {
                 self.add_mesh(s, p, None, MeshUv::Strip, faces, material)?;
             }
             "rectanglexy" | "rectanglexz" | "rectangleyz" => {
-                let r = rectangle::read(s, &kind)?;
+                let r = rectangle::read(s, kind)?;
                 self.add_mesh(
                     s,
                     r.corners.to_vec(),

@@ -3,23 +3,15 @@
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
-use super::{opt_f32, required, Loader};
+use super::spellings::{texture, type_names, type_of, TEXTURE_TYPES};
+use super::{nearest, opt_f32, required, Loader};
 use crate::files::shown;
 use crate::image_io::ReadLimits;
 use crate::math::Vec2;
+use crate::math::Vec3;
 use crate::scene::json::{NameIndex, Node};
 use crate::scene::SceneError;
-use crate::texture::Texture;
-
-pub(super) const TEXTURE_KEYS: [&str; 7] = [
-    "tPath",
-    "texture",
-    "texturepath",
-    "texture_file",
-    "texturemap",
-    "texture_path",
-    "tpath",
-];
+use crate::texture::{Checker, Texture};
 
 /// Materials defined once by name (`"materials": [{"name": "red", …}]`) and referred to by it,
 /// in file order; a name defined twice means its first definition. Found through an index, as a
@@ -93,8 +85,11 @@ impl Loader<'_> {
         if matches!(t.value, jsonc_parser::ast::Value::Array(_)) {
             return Ok(None); // texture coordinates (`texturemap` on meshes), read with the mesh
         }
+        if t.is_object() && t.contains_any(&["type"]) {
+            return self.library_texture(t).map(Some);
+        }
         let (node, rel) = if t.is_object() {
-            match t.get_any(&["path", "file", "filename", "tPath"]) {
+            match t.get_any(texture::PATH) {
                 Some(p) => {
                     let s = p.str()?;
                     (p, s)
@@ -123,7 +118,27 @@ impl Loader<'_> {
             self.warn(&node, "an empty texture file name; texture ignored");
             return Ok(None);
         }
+        if type_of(TEXTURE_TYPES, rel) == Some("checkerboard") {
+            // A checkerboard named alone: ten black and white squares across the uv square.
+            self.textures.push(Texture::checker(Checker {
+                colours: [Vec3::ZERO, Vec3::ONE],
+                scale: DEFAULT_CHECKER_SCALE,
+                solid: false,
+            }));
+            return Ok(Some(self.textures.len() as u32 - 1));
+        }
         if Path::new(rel).extension().is_none() {
+            // An image named without its folder and extension (`wood` for
+            // `textures/wood.ppm`, as one renderer looks it up).
+            for ext in ["ppm", "png", "jpg"] {
+                for folder in ["", "textures/"] {
+                    let candidate = format!("{folder}{rel}.{ext}");
+                    if let Ok(path) = self.resolve(&node, &candidate) {
+                        let path = path.to_string_lossy().into_owned();
+                        return self.image_texture(&node, &path, Vec2::ZERO).map(Some);
+                    }
+                }
+            }
             // A procedural texture of the file's own program (`wood`, `rainbow`), or a typo.
             if libraries.warned.insert(rel.to_string()) {
                 self.warn(
@@ -139,17 +154,19 @@ impl Loader<'_> {
         self.image_texture(&node, rel, Vec2::ZERO).map(Some)
     }
 
-    /// An entry of the texture library (see [`crate::texture`] for the forms).
+    /// A texture given by its `type`: an entry of the texture library or a texture object (see
+    /// [`crate::texture`] and docs/scene-format.md, "Texture", for the forms).
     pub(super) fn library_texture(&mut self, def: &Node) -> Result<u32, SceneError> {
         let type_node = required(def, &["type"])?;
-        match type_node.str()?.to_ascii_lowercase().as_str() {
-            "constant" => {
+        let name = type_node.str()?;
+        match type_of(TEXTURE_TYPES, name) {
+            Some("constant") => {
                 let c = required(def, &["colour", "color"])?.color()?;
                 self.textures.push(Texture::constant(c));
                 Ok(self.textures.len() as u32 - 1)
             }
-            "image" => {
-                let img = required(def, &["image", "path", "file", "filename"])?;
+            Some("image") => {
+                let img = required(def, texture::PATH)?;
                 let rel = img.str()?;
                 // The file's own program reads image row (1 − v − offset_v)·height: its v grows
                 // up the image, so its offset moves the lookup up (−v here).
@@ -159,8 +176,15 @@ impl Loader<'_> {
                 );
                 self.image_texture(&img, rel, offset)
             }
-            other => Err(type_node.error(format!(
-                "unknown texture type '{other}' (known: constant, image)"
+            Some(_) => {
+                let checker = checker(def)?;
+                self.textures.push(Texture::checker(checker));
+                Ok(self.textures.len() as u32 - 1)
+            }
+            None => Err(type_node.error(format!(
+                "unknown texture type '{name}' (nearest known: '{}'; known: {})",
+                nearest(name, &type_names(TEXTURE_TYPES)),
+                type_names(TEXTURE_TYPES).join(", ")
             ))),
         }
     }
@@ -200,4 +224,48 @@ impl Loader<'_> {
         self.texture_index.insert(key, i);
         Ok(i)
     }
+}
+
+/// Squares across a unit of uv of a checkerboard that gives no scale (as one renderer's
+/// `"checkerboard"` texture name makes it).
+const DEFAULT_CHECKER_SCALE: f32 = 10.0;
+
+/// A checkerboard object: two colours (white and black by default), squares per unit, and the
+/// space they are laid out in (`uv` by default, or `3d`).
+fn checker(def: &Node) -> Result<Checker, SceneError> {
+    let mut colours = [Vec3::ONE, Vec3::ZERO];
+    for (c, keys) in colours.iter_mut().zip(texture::CHECKER_COLOURS) {
+        if let Some(n) = def.get_any(keys) {
+            *c = n.color()?;
+        }
+    }
+    let scale = match def.get_any(texture::CHECKER_SCALE) {
+        Some(n) => {
+            let v = n.f32()?;
+            if !(v > 0.0 && v.is_finite()) {
+                return Err(n.error(format!(
+                    "a checkerboard's scale (squares per unit) must be > 0, found {v}"
+                )));
+            }
+            v
+        }
+        None => 1.0,
+    };
+    let solid = match def.get_any(texture::CHECKER_SPACE) {
+        Some(n) => match n.str()?.to_ascii_lowercase().as_str() {
+            "uv" => false,
+            "3d" | "world" | "solid" | "xyz" => true,
+            other => {
+                return Err(n.error(format!(
+                    "a checkerboard's space is 'uv' or '3d', found '{other}'"
+                )))
+            }
+        },
+        None => false,
+    };
+    Ok(Checker {
+        colours,
+        scale,
+        solid,
+    })
 }
