@@ -179,6 +179,23 @@ impl Light {
         }
     }
 
+    /// Flat triangles of light, of their own (no scene primitive is them), sampled by area.
+    pub fn triangles(
+        triangles: Vec<[Vec3; 3]>,
+        intensity: Intensity,
+        samples: u32,
+        method: Method,
+    ) -> Light {
+        Light::Triangles {
+            cumulative_area: cumulative_areas(&triangles),
+            triangles,
+            intensity,
+            samples,
+            method,
+            surface: 0..0,
+        }
+    }
+
     /// How many shadow rays this light takes per shading point.
     pub fn sample_count(&self) -> u32 {
         match self {

@@ -27,22 +27,12 @@ use std::ops::Range;
 
 use super::error::{Location, SceneError, Warning};
 use super::json::Node;
+use super::load::spellings::{type_of, SHAPE_TYPES};
 use super::load::{positive, required};
 use crate::geometry::{Primitive, Primitives, Shape};
 use crate::light::{cumulative_areas, Intensity, Light};
 use crate::math::Vec3;
 use crate::sampling::Method;
-
-/// `type` values of a shape that can be an area light's surface, by the light they make.
-const SPHERE_TYPES: &[&str] = &["sphere", "uvsphere"];
-const FLAT_TYPES: &[&str] = &[
-    "triangle",
-    "plane",
-    "planarquad",
-    "planerquad",
-    "quad",
-    "rectangle",
-];
 
 /// Most shape ids listed in the message of a `shapeid` that names none.
 const LISTED_IDS: usize = 20;
@@ -55,11 +45,12 @@ pub(super) fn sphere(shape: &Node) -> Result<(Vec3, f32), SceneError> {
     Ok((center, radius))
 }
 
-/// Whether a light's `shape` of this `type` (lower case) is a quad or a triangle.
+/// The corners of a shape of this `type` if it is a triangle or a quad: the shapes, with
+/// spheres, that can be an area light's surface.
 pub(super) fn flat_corners(kind: &str) -> Option<usize> {
-    match kind {
-        "triangle" => Some(3),
-        k if FLAT_TYPES.contains(&k) => Some(4),
+    match type_of(SHAPE_TYPES, kind) {
+        Some("triangle") => Some(3),
+        Some("quad") => Some(4),
         _ => None,
     }
 }
@@ -313,7 +304,7 @@ fn surface_light(
     samples: u32,
     method: Method,
 ) -> Option<Light> {
-    if SPHERE_TYPES.contains(&kind) {
+    if type_of(SHAPE_TYPES, kind) == Some("sphere") {
         match prims {
             [Primitive {
                 shape: Shape::Sphere(s),
@@ -328,7 +319,7 @@ fn surface_light(
             }),
             _ => None,
         }
-    } else if FLAT_TYPES.contains(&kind) {
+    } else if flat_corners(kind).is_some() {
         let triangles: Vec<[Vec3; 3]> = prims
             .iter()
             .map(|p| match &p.shape {

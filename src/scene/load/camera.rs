@@ -95,7 +95,7 @@ impl Loader<'_> {
                 .unwrap_or_else(|| cam.error("missing fov")));
         };
 
-        let (position, dir, up, dir_node) = self.pose(cam)?;
+        let (position, dir, up, dir_node, looks_at_point) = self.pose(cam)?;
         let exposure = match cam
             .get_any(camera::EXPOSURE)
             .or_else(|| root.get_any(camera::EXPOSURE))
@@ -110,7 +110,9 @@ impl Loader<'_> {
             None => 1.0,
         };
 
-        let lens = self.lens(root, cam, thin_lens, dir)?;
+        // Without a focus distance, a lens focuses on the point looked at, if any.
+        let target_distance = looks_at_point.then(|| dir.length());
+        let lens = self.lens(root, cam, thin_lens, target_distance)?;
         // A camera with a lens is a thin lens whatever its type says.
         let thin_lens = lens.is_some();
 
@@ -133,19 +135,21 @@ impl Loader<'_> {
         Ok((camera, exposure, lens_samples))
     }
 
-    /// The camera's position, viewing direction, up hint, and the node that gave the direction:
-    /// from a camera-to-world matrix, or a position with a point looked at (or the 2021–23
-    /// skeleton's direction) and an up vector.
+    /// The camera's position, viewing direction, up hint, the node that gave the direction, and
+    /// whether the direction leads to a point the file names: from a camera-to-world matrix, or
+    /// a position with a point looked at (or the 2021–23 skeleton's direction) and an up vector.
+    #[allow(clippy::type_complexity)]
     fn pose<'a, 't>(
         &mut self,
         cam: &Node<'a, 't>,
-    ) -> Result<(Vec3, Vec3, Vec3, Node<'a, 't>), SceneError> {
+    ) -> Result<(Vec3, Vec3, Vec3, Node<'a, 't>, bool), SceneError> {
         if let Some(m) = cam.get_any(camera::MATRIX) {
             let (position, dir, up) = camera_to_world(&m)?;
-            return Ok((position, dir, up, m));
+            return Ok((position, dir, up, m, false));
         }
         let position = opt_vec3(cam, camera::POSITION)?;
         let look = cam.get_any(camera::LOOK);
+        let looks_at_point = look.as_ref().is_some_and(|n| n.key() != Some("lookat"));
         let direction = if let Some(n) = look.clone().filter(|n| n.key() == Some("lookat")) {
             // The 2021–23 skeleton's `lookat`, spelled just so, is a direction, not a point;
             // every other spelling (CGR's `lookAt`) is the point looked at. Some files write a
@@ -193,27 +197,23 @@ impl Loader<'_> {
             );
             Vec3::Z
         };
-        Ok((position, dir, up, dir_node))
+        Ok((position, dir, up, dir_node, looks_at_point))
     }
 
     /// The camera's lens, if it has one: a thin-lens camera's, or any camera's that gives an
-    /// aperture (docs/scene-format.md, "Camera"). `dir` is the viewing direction, whose length
-    /// is the focus distance of a camera that gives none but looks at a point.
+    /// aperture (docs/scene-format.md, "Camera"). `target_distance` is the focus distance of a
+    /// camera that gives none: the distance to the point it looks at, if it names one.
     fn lens(
         &mut self,
         root: &Node,
         cam: &Node,
         thin_lens: bool,
-        dir: Vec3,
+        target_distance: Option<f32>,
     ) -> Result<Option<Lens>, SceneError> {
         // A real lens: focal length, image distance and f-number.
-        if cam.contains_any(&["focal", "focallength"]) && cam.contains_any(camera::IMAGE_DISTANCE) {
-            let (f, d) = (
-                cam.get_any(&["focal", "focallength"])
-                    .map_or(Ok(0.0), |n| n.f32())?,
-                cam.get_any(camera::IMAGE_DISTANCE)
-                    .map_or(Ok(0.0), |n| n.f32())?,
-            );
+        if cam.contains_any(camera::FOCAL_LENGTH) && cam.contains_any(camera::IMAGE_DISTANCE) {
+            let f = required(cam, camera::FOCAL_LENGTH)?.f32()?;
+            let d = required(cam, camera::IMAGE_DISTANCE)?.f32()?;
             let n_node = required(cam, &["aperture", "fstop", "fnumber"])?;
             let n = n_node.f32()?;
             if !(f > 0.0 && d > f && n > 0.0) {
@@ -232,14 +232,14 @@ impl Loader<'_> {
         // A photographer's lens: focal length in millimetres and an f-number.
         if let Some(n_node) = cam.get_any(camera::F_NUMBER) {
             let n = n_node.f32()?;
-            let f = required(cam, &["focallength"])?.f32()?;
+            let f = required(cam, camera::FOCAL_LENGTH)?.f32()?;
             if !(f > 0.0 && n > 0.0) {
                 return Err(n_node.error(format!(
                     "a lens needs a focal length > 0 (millimetres) and an f-number > 0; found \
                      {f} and {n}"
                 )));
             }
-            let focus = required(cam, &["focusdistance", "focaldistance", "focusdist"])?;
+            let focus = required(cam, camera::FOCUS_DISTANCE)?;
             let focus_distance = focus.f32()?;
             if focus_distance <= 0.0 {
                 return Err(focus.error(format!(
@@ -272,20 +272,12 @@ impl Loader<'_> {
         match radius {
             Some(r) if r < 0.0 => Err(cam.error(format!("the aperture must be ≥ 0, found {r}"))),
             Some(r) if r > 0.0 => {
-                let looks_at_point = cam
-                    .peek("lookat")
-                    .is_some_and(|n| n.key() != Some("lookat"))
-                    || cam.contains_any(&camera::LOOK[1..]);
-                let focus =
-                    match focus {
-                        Some(f) => f,
-                        // Without a focus distance, focus on the point looked at.
-                        None if looks_at_point => dir.length(),
-                        None => return Err(cam.error(
-                            "a camera with an aperture needs a focus distance ('focusdistance' \
-                             or a spelling listed in docs/scene-format.md)",
-                        )),
-                    };
+                let Some(focus) = focus.or(target_distance) else {
+                    return Err(cam.error(
+                        "a camera with an aperture needs a focus distance ('focusdistance' or a \
+                         spelling listed in docs/scene-format.md)",
+                    ));
+                };
                 if focus <= 0.0 {
                     return Err(cam.error(format!("the focus distance must be > 0, found {focus}")));
                 }

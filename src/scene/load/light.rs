@@ -1,7 +1,7 @@
 //! Lights: points, ambient terms, and area lights of every shape.
 
 use super::shape::{quad_edges, right_angle_corner};
-use super::spellings::{light, type_names, type_of, LIGHT_TYPES};
+use super::spellings::{light, type_names, type_of, LIGHT_TYPES, SHAPE_TYPES};
 use super::{nearest, non_negative_color, opt_f32, positive, required, Loader};
 use crate::light::{Falloff, Intensity, Light};
 use crate::math::Vec3;
@@ -21,57 +21,60 @@ impl Loader<'_> {
         }
         let type_node = required(l, &["type"])?;
         let name = type_node.str()?;
-        match type_of(LIGHT_TYPES, name) {
-            Some("point") if l.contains_any(light::AXIS_U) && l.contains_any(light::AXIS_V) => {
+        let Some(kind) = type_of(LIGHT_TYPES, name) else {
+            let near = nearest(name, &type_names(LIGHT_TYPES));
+            l.mark_all_read(); // skipped whole, with this warning
+            self.warn(
+                &type_node,
+                format!("unknown light type '{name}' (nearest known: '{near}'); skipped"),
+            );
+            return Ok(());
+        };
+        if kind == "ambient" {
+            let n = required(l, &["intensity", "color", "colour"])?;
+            let a = non_negative_color(&n)?;
+            self.ambient = Some(self.ambient.unwrap_or(Vec3::ZERO) + a);
+            return Ok(());
+        }
+        let intensity = self.intensity(l)?;
+        match kind {
+            "point" if l.contains_any(light::AXIS_U) && l.contains_any(light::AXIS_V) => {
                 self.warn(
                     &type_node,
                     "a point light with edges 'u' and 'v' is read as an area light centred on \
                      its position",
                 );
-                let intensity = self.intensity(l)?;
-                self.area_light(l, intensity)?
+                self.area_light(l, intensity)
             }
-            Some("point") => {
-                let intensity = self.intensity(l)?;
+            "point" => {
                 let position = required(l, light::POSITION)?.vec3()?;
                 self.lights.push(Light::Point {
                     position,
                     intensity,
                 });
+                Ok(())
             }
-            Some("ambient") => {
-                let n = required(l, &["intensity", "color", "colour"])?;
-                let a = non_negative_color(&n)?;
-                self.ambient = Some(self.ambient.unwrap_or(Vec3::ZERO) + a);
-            }
-            Some("sphere") => {
-                let intensity = self.intensity(l)?;
-                self.sphere_light(l, intensity)?
-            }
-            Some("disc") => {
-                let intensity = self.intensity(l)?;
-                self.disc_light(l, intensity)?
-            }
-            Some(_) => {
-                let intensity = self.intensity(l)?;
-                self.area_light(l, intensity)?
-            }
-            None => {
-                let near = nearest(name, &type_names(LIGHT_TYPES));
-                l.mark_all_read(); // skipped whole, with this warning
-                self.warn(
-                    &type_node,
-                    format!("unknown light type '{name}' (nearest known: '{near}'); skipped"),
-                );
-            }
+            "sphere" => self.sphere_light(l, intensity),
+            "disc" => self.disc_light(l, intensity),
+            _ => self.area_light(l, intensity),
         }
-        Ok(())
     }
 
     /// A ball of light: a centre and a radius.
     fn sphere_light(&mut self, l: &Node, intensity: Intensity) -> Result<(), SceneError> {
         let center = required(l, light::POSITION)?.vec3()?;
         let radius = positive(l, "radius")?;
+        self.push_sphere_light(l, center, radius, intensity)
+    }
+
+    /// The ball of light `center`, `radius`, sampled as light `l` says.
+    fn push_sphere_light(
+        &mut self,
+        l: &Node,
+        center: Vec3,
+        radius: f32,
+        intensity: Intensity,
+    ) -> Result<(), SceneError> {
         let (samples, method) = self.area_sampling(l)?;
         self.lights.push(Light::Sphere {
             center,
@@ -113,14 +116,8 @@ impl Loader<'_> {
             .map(|k| [center, corner(k), corner(k + 1)])
             .collect();
         let (samples, method) = self.area_sampling(l)?;
-        self.lights.push(Light::Triangles {
-            cumulative_area: crate::light::cumulative_areas(&triangles),
-            triangles,
-            intensity,
-            samples,
-            method,
-            surface: 0..0,
-        });
+        self.lights
+            .push(Light::triangles(triangles, intensity, samples, method));
         Ok(())
     }
 
@@ -347,18 +344,11 @@ impl Loader<'_> {
         }
         let type_node = required(shape, &["type"])?;
         let kind = type_node.str()?.to_ascii_lowercase();
-        let light = if kind == "sphere" || kind == "uvsphere" {
+        if type_of(SHAPE_TYPES, &kind) == Some("sphere") {
             let (center, radius) = lights::sphere(shape)?;
-            let (samples, method) = self.area_sampling(l)?;
-            Light::Sphere {
-                center,
-                radius,
-                intensity,
-                samples,
-                method,
-                surface: 0..0,
-            }
-        } else if let Some(n) = lights::flat_corners(&kind) {
+            return self.push_sphere_light(l, center, radius, intensity);
+        }
+        let light = if let Some(n) = lights::flat_corners(&kind) {
             let p = self.corners(shape, n)?;
             let (samples, method) = self.area_sampling(l)?;
             if n == 4 {
@@ -374,14 +364,7 @@ impl Loader<'_> {
                         shape.error("the triangle has zero area (its corners are collinear)")
                     );
                 }
-                Light::Triangles {
-                    cumulative_area: crate::light::cumulative_areas(&triangles),
-                    triangles,
-                    intensity,
-                    samples,
-                    method,
-                    surface: 0..0,
-                }
+                Light::triangles(triangles, intensity, samples, method)
             }
         } else {
             return Err(type_node.error(format!(

@@ -116,9 +116,9 @@ impl Loader<'_> {
                     return Err(at.error(format!("{name} must be ≥ 0, found {v}")));
                 }
             }
+            Self::emission(n, &mut m)?;
             // A metal's roughness is its own (see `material_kind`); any other material's blurs
             // its mirror part.
-            Self::emission(n, &mut m)?;
             let roughness_read = own_material && self.material_kind(n, &mut m)?;
             if let Some(r) = n.get("roughness").filter(|_| !roughness_read) {
                 m.mirror_exponent = self.mirror_roughness(&r, m.kr)?;

@@ -172,9 +172,6 @@ pub fn load_str(text: &str, path: &Path, options: &LoadOptions) -> Result<Scene,
     loader.scene(&root)
 }
 
-/// A tone map named by the file (a camera's or the top level's).
-const TONE_MAP_KEYS: &[&str] = &["tone_mapping", "tonemapper", "tonemap"];
-
 struct Loader<'o> {
     options: &'o LoadOptions,
     base: PathBuf,
@@ -532,8 +529,8 @@ impl Loader<'_> {
         // A tone map named in the camera or at the top level (`"tone_mapping": "aces"`).
         let named = root
             .get("camera")
-            .and_then(|c| c.get_any(TONE_MAP_KEYS))
-            .or_else(|| root.get_any(TONE_MAP_KEYS));
+            .and_then(|c| c.get_any(spellings::scene::TONE_MAP))
+            .or_else(|| root.get_any(spellings::scene::TONE_MAP));
         if let Some(n) = named {
             match n.str()?.parse::<ToneMap>() {
                 Ok(map) => return Ok(Some(map)),

@@ -59,6 +59,8 @@ pub mod scene {
     pub const SAMPLER: &[&str] = &["method", "sampler", "sampling"];
     /// `true`: jittered pixel and light samples; `false`: random ones.
     pub const JITTER: &[&str] = &["use_jitter_sample"];
+    /// A tone map by name, in the camera or at the top level.
+    pub const TONE_MAP: &[&str] = &["tone_mapping", "tonemapper", "tonemap"];
 }
 
 /// The camera.
@@ -88,6 +90,10 @@ pub mod camera {
         "focus",
         "f",
     ];
+    /// A focus distance proper: what a lens given by its focal length focuses at.
+    pub const FOCUS_DISTANCE: &[&str] = &["focusdistance", "focaldistance", "focusdist"];
+    /// A real lens's focal length (millimetres beside an f-number `fstop`).
+    pub const FOCAL_LENGTH: &[&str] = &["focal", "focallength"];
     /// A real lens: its focal length (`focal`), the image distance behind it (`d`) and its
     /// f-number (`aperture`); the lens radius is focal / (2 · f-number) and the plane in focus
     /// lies at focal · d / (d − focal).
@@ -340,6 +346,7 @@ pub fn tables() -> Vec<Table> {
                 k("shadow rays per area light", scene::LIGHT_SAMPLES),
                 k("sample placement", scene::SAMPLER),
                 k("jittered or random samples", scene::JITTER),
+                k("tone map (camera or top level)", scene::TONE_MAP),
             ],
         },
         Table {
@@ -356,6 +363,14 @@ pub fn tables() -> Vec<Table> {
                 k("lens radius", camera::LENS_RADIUS),
                 k("lens diameter", camera::LENS_DIAMETER),
                 k("focus distance", camera::FOCUS),
+                k(
+                    "focus distance beside a focal length",
+                    camera::FOCUS_DISTANCE,
+                ),
+                k(
+                    "focal length (with `d` or an f-number)",
+                    camera::FOCAL_LENGTH,
+                ),
                 k(
                     "image distance (with a focal length)",
                     camera::IMAGE_DISTANCE,

@@ -1,7 +1,7 @@
 //! Textures: image files, and the named texture and material libraries.
 
 use std::collections::{HashMap, HashSet};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use super::spellings::{texture, type_names, type_of, TEXTURE_TYPES};
 use super::{nearest, opt_f32, required, Loader};
@@ -125,17 +125,23 @@ impl Loader<'_> {
                 scale: DEFAULT_CHECKER_SCALE,
                 solid: false,
             }));
-            return Ok(Some(self.textures.len() as u32 - 1));
+            let done = self.textures.len() as u32 - 1;
+            libraries.loaded.insert(rel.to_string(), done);
+            return Ok(Some(done));
         }
         if Path::new(rel).extension().is_none() {
+            if libraries.warned.contains(rel) {
+                return Ok(None); // looked for, and warned about, already
+            }
             // An image named without its folder and extension (`wood` for
             // `textures/wood.ppm`, as one renderer looks it up).
             for ext in ["ppm", "png", "jpg"] {
                 for folder in ["", "textures/"] {
                     let candidate = format!("{folder}{rel}.{ext}");
                     if let Ok(path) = self.resolve(&node, &candidate) {
-                        let path = path.to_string_lossy().into_owned();
-                        return self.image_texture(&node, &path, Vec2::ZERO).map(Some);
+                        let done = self.image_texture_at(&node, path, Vec2::ZERO)?;
+                        libraries.loaded.insert(rel.to_string(), done);
+                        return Ok(Some(done));
                     }
                 }
             }
@@ -198,6 +204,17 @@ impl Loader<'_> {
         offset: Vec2,
     ) -> Result<u32, SceneError> {
         let path = self.resolve(node, rel)?;
+        self.image_texture_at(node, path, offset)
+    }
+
+    /// The image file at `path` (found already) as a texture with uv offset `offset`, loaded
+    /// once per file and offset.
+    fn image_texture_at(
+        &mut self,
+        node: &Node,
+        path: PathBuf,
+        offset: Vec2,
+    ) -> Result<u32, SceneError> {
         let key = (path.clone(), [offset.x.to_bits(), offset.y.to_bits()]);
         if let Some(&i) = self.texture_index.get(&key) {
             return Ok(i);
