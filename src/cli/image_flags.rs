@@ -60,9 +60,10 @@ pub(crate) struct ImageFlags {
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
     /// Tone map for 8-bit output: linear (the coursework's: ×255, clamp), srgb, reinhard,
-    /// exposure (1 − exp(−x·exposure); the only one a CGR file's camera exposure feeds), or cgr
-    /// (the CGR course's display transform). Default: cgr for CGR files, else linear; reinhard
-    /// for a file that sets "use_tone_mapping": true.
+    /// exposure (1 − exp(−x·exposure); the only one a CGR file's camera exposure feeds), cgr
+    /// (the CGR course's display transform), or aces (Narkowicz's ACES filmic fit, no gamma).
+    /// Default: the file's "tone_mapping" if it names one, else cgr for CGR files, else linear;
+    /// reinhard for a file that sets "use_tone_mapping": true.
     #[arg(long)]
     pub tonemap: Option<ToneMap>,
     /// Multiplies the scene's exposure (a finite number ≥ 0, as in the scene file); for CGR files,
