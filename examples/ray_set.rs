@@ -16,9 +16,23 @@
 
 use raytracer::accel::kernels::Isa;
 use raytracer::accel::{Accel, AccelKind};
-use raytracer::bench::{grid_light, ray_sets, sphere_grid, RayKind};
 use raytracer::geometry::Primitives;
 use raytracer::ray::Ray;
+
+// The benchmark's own scene, ray-set and timing code, shared with `raytracer bench` by path: the
+// command line is a binary, so its modules are not part of the library.
+#[allow(dead_code)]
+#[path = "../src/cli/bench/rays.rs"]
+mod rays;
+#[allow(dead_code)]
+#[path = "../src/cli/bench/scenes.rs"]
+mod scenes;
+#[allow(dead_code)]
+#[path = "../src/cli/bench/timing.rs"]
+mod timing;
+
+use rays::{ray_sets, RayKind};
+use scenes::{grid_light, sphere_grid};
 
 /// Closest-hit queries for each of `rays`: the hits.
 #[inline(never)]

@@ -1,13 +1,14 @@
-//! `raytracer`: a Whitted/distribution ray tracer for the coursework JSON scene format.
+//! `raytracer`: a Whitted/distribution ray tracer and path tracer for the coursework JSON scene
+//! format.
 //!
-//! Data flows one way: JSON → [`scene::Scene`] → [`accel::Bvh`] → [`integrator`] → [`film::Film`] →
-//! [`image_io`]. See `docs/ARCHITECTURE.md`.
+//! Data flows one way: JSON → [`scene::Scene`] ([`scene::load()`]) → [`accel::Accel`] →
+//! [`integrator`] → [`film::Film`] ([`render::render`]) → a file ([`image_io::write_image`]); a
+//! render split into tiles or sample ranges is written and merged by [`parts`]. The command line
+//! and its tools (`bench`, `study`, `batch`, `compare`) are the binary's, in `src/cli/`. See
+//! `docs/ARCHITECTURE.md`.
 
 pub mod accel;
-pub mod batch;
-pub mod bench;
 pub mod camera;
-pub mod cli;
 pub mod files;
 pub mod film;
 pub mod geometry;
@@ -23,5 +24,4 @@ pub mod ray;
 pub mod render;
 pub mod sampling;
 pub mod scene;
-pub mod study;
 pub mod texture;

@@ -187,31 +187,6 @@ fn quick_study_writes_the_csv_rows_and_a_png_plot() {
     assert_eq!((reference.width, reference.height), (40, 30));
 }
 
-/// A study of a path-traced scene counts samples per pixel, and every sampler's error falls as
-/// they grow: each run's paths come from the sampler under study.
-#[test]
-fn a_path_traced_study_counts_pixel_samples_and_converges() {
-    let options = LoadOptions {
-        width: Some(24),
-        ..Default::default()
-    };
-    let scene = load(&repo().join("scenes/cornell.json"), &options).unwrap();
-    let integrator = raytracer::integrator::Kind::of_scene(&scene);
-    assert_eq!(integrator, raytracer::integrator::Kind::Path);
-    let reference = raytracer::study::reference(&scene, integrator, 1024).unwrap();
-    let study = raytracer::study::StudyOptions {
-        max_samples: 64,
-        integrator,
-        ..Default::default()
-    };
-    let runs = raytracer::study::run_study(&scene, &reference, &study, |_, _, _| {}).unwrap();
-    for m in [Method::Random, Method::Jittered, Method::Sobol] {
-        let at = |n| raytracer::study::mse_at(&runs, m, n).unwrap();
-        assert!(at(64) < 0.3 * at(4), "{m}: {} vs {}", at(64), at(4));
-    }
-    assert_eq!(raytracer::study::counted(integrator), "samples per pixel");
-}
-
 /// `study --adaptive`: uniform runs at 1 … 64 pixel samples and one adaptive run per threshold,
 /// each adaptive run between the first decision (16) and the cap on average, looser thresholds
 /// taking fewer samples, every ratio inside the uniform runs' range positive; a plot and the

@@ -7,11 +7,11 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
-use crate::files::output::Outputs;
-use crate::files::shown;
-use crate::film::ToneMap;
-use crate::image_io::{encode_image, read_image};
-use crate::metric::{flip_map, heat_map, mse, psnr, Region};
+use raytracer::files::output::Outputs;
+use raytracer::files::shown;
+use raytracer::film::ToneMap;
+use raytracer::image_io::{encode_image, read_image};
+use raytracer::metric::{flip_map, heat_map, mse, psnr, Region};
 
 use super::exit_code::{self, Failure};
 use super::interrupt::Interrupt;

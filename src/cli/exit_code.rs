@@ -1,6 +1,6 @@
 //! Exit statuses shared by the `raytracer` subcommands, and the failures that lead to them.
 
-use crate::files::output::OutputError;
+use raytracer::files::output::OutputError;
 
 /// Success: the image was written, or the comparison is within its thresholds.
 pub const OK: u8 = 0;

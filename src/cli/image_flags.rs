@@ -2,12 +2,12 @@
 //! (flattened into both with clap), and how they combine with a scene's own settings: both
 //! subcommands write the same image for the same flags.
 
-use crate::accel::AccelKind;
-use crate::film::ToneMap;
-use crate::render::adaptive::{Adaptive, DEFAULT_THRESHOLD};
-use crate::render::RenderOptions;
-use crate::sampling::Method;
-use crate::scene::Scene;
+use raytracer::accel::AccelKind;
+use raytracer::film::ToneMap;
+use raytracer::render::adaptive::{Adaptive, DEFAULT_THRESHOLD};
+use raytracer::render::RenderOptions;
+use raytracer::sampling::Method;
+use raytracer::scene::Scene;
 
 use super::values;
 
@@ -83,7 +83,7 @@ pub(crate) struct ImageFlags {
     /// Integrator: whitted (ray trees with Blinn-Phong direct light) or path (path tracing with
     /// next-event estimation and MIS). Default: the scene's rendermode (pathtrace → path).
     #[arg(long)]
-    pub integrator: Option<crate::integrator::Kind>,
+    pub integrator: Option<raytracer::integrator::Kind>,
 }
 
 impl ImageFlags {
@@ -111,11 +111,11 @@ impl ImageFlags {
             (None, Some(_)) => Some(TIME_LIMIT_SPP),
             (spp, _) => spp,
         };
-        let integrator = crate::integrator::Kind::chosen(self.integrator, scene);
+        let integrator = raytracer::integrator::Kind::chosen(self.integrator, scene);
         // The path tracer's own dimensions are Sobol; its pixel and lens samples follow.
         let default_method = match (adaptive, integrator) {
-            (Some(_), _) | (None, crate::integrator::Kind::Path) => Method::Sobol,
-            (None, crate::integrator::Kind::Whitted) => Method::Jittered,
+            (Some(_), _) | (None, raytracer::integrator::Kind::Path) => Method::Sobol,
+            (None, raytracer::integrator::Kind::Whitted) => Method::Jittered,
         };
         RenderOptions {
             spp: spp_cap.or(scene.pixel_samples).unwrap_or(1),
@@ -129,7 +129,7 @@ impl ImageFlags {
             accel: self.accel,
             leaf_size: self.leaf_size as usize,
             max_depth: self.max_depth.unwrap_or(u32::MAX),
-            trace: crate::integrator::TraceOptions {
+            trace: raytracer::integrator::TraceOptions {
                 light_method: self.sampler,
                 light_samples: scene.light_samples,
                 adaptive_lights: self.adaptive_lights,
@@ -138,7 +138,7 @@ impl ImageFlags {
                 } else {
                     Some(
                         self.adc_bailout
-                            .unwrap_or(crate::integrator::DEFAULT_CUTOFF),
+                            .unwrap_or(raytracer::integrator::DEFAULT_CUTOFF),
                     )
                 },
             },

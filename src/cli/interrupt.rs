@@ -14,7 +14,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use super::exit_code;
-use crate::files::output::{OutputError, PendingFile};
+use raytracer::files::output::{OutputError, PendingFile};
 
 /// How long a signalled command may take to stop by itself before it is ended.
 pub const GRACE: Duration = Duration::from_millis(50);

@@ -7,11 +7,11 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
-use crate::files::output::Outputs;
-use crate::files::shown;
-use crate::film::ToneMap;
-use crate::image_io::{encode_image, OutputFormat};
-use crate::parts::merge::{assemble, read_tiles};
+use raytracer::files::output::Outputs;
+use raytracer::files::shown;
+use raytracer::film::ToneMap;
+use raytracer::image_io::{encode_image, OutputFormat};
+use raytracer::parts::merge::{assemble, read_tiles};
 
 use super::exit_code::{self, Failure};
 use super::interrupt::Interrupt;
@@ -38,7 +38,7 @@ struct MergeCli {
     #[arg(long, default_value_t = 1.0, value_parser = values::non_negative_f32)]
     exposure: f32,
     /// Refuse tiles of images with more pixels than this.
-    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_PIXELS)]
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_PIXELS)]
     max_pixels: u64,
     /// No summary line.
     #[arg(short, long)]

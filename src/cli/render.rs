@@ -6,13 +6,13 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
-use crate::files::output::Outputs;
-use crate::files::shown;
-use crate::film::{PixelRect, ToneMap};
-use crate::image_io::{encode_image, OutputFormat};
-use crate::parts::{self, Part};
-use crate::render::{render, RenderError, RenderOptions};
-use crate::scene::{load, LoadOptions};
+use raytracer::files::output::Outputs;
+use raytracer::files::shown;
+use raytracer::film::{PixelRect, ToneMap};
+use raytracer::image_io::{encode_image, OutputFormat};
+use raytracer::parts::{self, Part};
+use raytracer::render::{render, RenderError, RenderOptions};
+use raytracer::scene::{load, LoadOptions};
 
 use super::exit_code::{self, Failure};
 use super::image_flags::ImageFlags;
@@ -49,32 +49,32 @@ struct Cli {
     #[arg(long = "asset-dir")]
     asset_dirs: Vec<PathBuf>,
     /// Refuse images with more pixels than this.
-    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_PIXELS)]
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_PIXELS)]
     max_pixels: u64,
     /// Refuse scenes whose nbounces is larger than this.
-    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_BOUNCES)]
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_BOUNCES)]
     max_bounces: u32,
     /// Refuse scenes with more triangles than this.
-    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_TRIANGLES)]
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_TRIANGLES)]
     max_triangles: usize,
     /// Refuse area lights that take more shadow rays per shading point than this.
-    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_LIGHT_SAMPLES)]
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_LIGHT_SAMPLES)]
     max_light_samples: u32,
     /// Refuse scenes that ask for more samples per pixel than this (`pixelsample` and its
     /// spellings; --spp is not limited by it).
-    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_PIXEL_SAMPLES)]
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_PIXEL_SAMPLES)]
     max_pixel_samples: u32,
     /// Refuse scene files larger than this many bytes (checked before reading; the parsed
     /// document takes about ten times the file's size).
-    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_SCENE_BYTES)]
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_SCENE_BYTES)]
     max_scene_bytes: u64,
     /// Refuse textures with more texels (width × height) than this, read from the image's header
     /// before decoding (a texture takes 3 bytes a texel from an 8-bit image, 12 from a 16-bit or
     /// EXR one; the default is 8192², 192 or 768 MiB).
-    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_TEXTURE_PIXELS)]
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_TEXTURE_PIXELS)]
     max_texture_pixels: u64,
     /// Refuse mesh files (PLY, OBJ) larger than this many bytes; they are read whole.
-    #[arg(long, default_value_t = crate::scene::load::DEFAULT_MAX_MESH_BYTES)]
+    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_MESH_BYTES)]
     max_mesh_bytes: u64,
     /// Refuse mesh files whose triangles and vertices would need more than this many bytes to
     /// load and trace (about 200 a triangle), checked from their counts before they are read.
@@ -157,7 +157,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         max_scene_bytes: cli.max_scene_bytes,
         max_texture_pixels: cli.max_texture_pixels,
         max_mesh_bytes: cli.max_mesh_bytes,
-        max_memory: cli.max_memory.or_else(crate::memory::available),
+        max_memory: cli.max_memory.or_else(raytracer::memory::available),
     };
     let scene = load(&cli.scene, &load_options).map_err(|e| Failure::Input(e.to_string()))?;
     if cli.strict {
@@ -234,7 +234,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
     {
         let spp = options.spp.max(1) as f32;
         let share: Vec<f32> = counts.iter().map(|&k| k as f32 / spp).collect();
-        let map = crate::metric::heat_map(out.film.width, out.film.height, &share);
+        let map = raytracer::metric::heat_map(out.film.width, out.film.height, &share);
         let map_bytes = encode_image(path, &map, ToneMap::Linear, 1.0)
             .map_err(|e| Failure::Input(e.to_string()))?;
         interrupt.commit(pending_map, &map_bytes)?;
@@ -266,7 +266,7 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
 }
 
 /// The pixels to render: `--crop`, or the `--tile` cell of the `--tiles` grid.
-fn crop(cli: &Cli, scene: &crate::scene::Scene) -> Result<Option<PixelRect>, Failure> {
+fn crop(cli: &Cli, scene: &raytracer::scene::Scene) -> Result<Option<PixelRect>, Failure> {
     let size = (scene.camera.width, scene.camera.height);
     match (cli.tile, cli.tiles) {
         (Some(cell), Some(grid)) => PixelRect::grid_cell(size, cell, grid).map(Some).ok_or_else(|| {

@@ -188,7 +188,7 @@ impl Tracer<'_> {
 
 /// A light exactly on a surface (an area light drawn onto a ceiling) must not be shadowed by that
 /// surface: shadow rays stop this fraction of their length short of the light.
-pub(crate) const LIGHT_CLEARANCE: f32 = 1e-4;
+pub const LIGHT_CLEARANCE: f32 = 1e-4;
 
 /// What reaches the film: NaN channels (0·∞ in extreme scenes) become 0, infinite or negative
 /// ones are clamped to [0, f32::MAX], so a blown-out pixel stays white rather than turning black.

@@ -5,7 +5,8 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::{Row, Status, Totals};
+use super::run::{Row, Status};
+use super::summary::Totals;
 
 /// What the page says about the batch as a whole.
 #[derive(Debug, Clone, Default)]
@@ -360,7 +361,7 @@ pub fn html(rows: &[Row], info: &ReportInfo) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::batch::{Comparison, Images};
+    use crate::batch::run::{Comparison, Images};
     use std::path::PathBuf;
 
     #[test]

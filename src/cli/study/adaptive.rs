@@ -9,20 +9,15 @@
 //! what `--adaptive` uses by default, so the ratio measures the adaptivity alone; every other
 //! sample of the scene (area lights, the lens, a path's bounces) is the render's own.
 
-use super::{
-    bounds, cost_to_reach, draw_axes, draw_legend, encode_png, loglog_slope, register_font,
-    runs_of, timed, Run, REFERENCE_SEED,
-};
-use crate::film::Film;
-use crate::integrator::Kind;
-use crate::metric::{mean_flip, mse, Region};
-use crate::render::adaptive::{brightness_scale, samples_with_known_errors, Adaptive};
-use crate::render::{render, RenderError, RenderOptions, RenderOutput};
-use crate::sampling::Method;
-use crate::scene::Scene;
-
-/// The noise thresholds a study runs by default, loosest first.
-pub const THRESHOLDS: [f32; 4] = [0.04, 0.02, 0.01, 0.005];
+use super::plot::{bounds, draw_axes, draw_legend, encode_png, register_font};
+use super::runs::{cost_to_reach, loglog_slope, runs_of, timed, Run, REFERENCE_SEED};
+use raytracer::film::Film;
+use raytracer::integrator::Kind;
+use raytracer::metric::{mean_flip, mse, Region};
+use raytracer::render::adaptive::{brightness_scale, samples_with_known_errors, Adaptive};
+use raytracer::render::{render, RenderError, RenderOptions, RenderOutput};
+use raytracer::sampling::Method;
+use raytracer::scene::Scene;
 
 /// What an adaptive study renders.
 #[derive(Debug, Clone)]
@@ -325,7 +320,7 @@ pub fn run_adaptive_study(
 ) -> Result<AdaptiveStudy, RenderError> {
     let full = Region::full(reference.width, reference.height);
     let region = options.region.unwrap_or(full);
-    let counts = super::sample_counts(Method::Sobol, options.max_samples);
+    let counts = super::runs::sample_counts(Method::Sobol, options.max_samples);
     let total = counts.len() + 1 + options.thresholds.len();
     let timed = |threshold: Option<f32>, spp: u32| {
         timed(options.runs, || {
@@ -443,7 +438,7 @@ pub fn allocation_map(allocation: &[f64], width: u32) -> Film {
         .map(|x| (x / scale).min(1.0) as f32)
         .collect();
     let height = (allocation.len() as u32).checked_div(width).unwrap_or(0);
-    crate::metric::heat_map(width, height, &shares)
+    raytracer::metric::heat_map(width, height, &shares)
 }
 
 /// A ratio as the study prints it, `0.42×`, or `-` where there is none.
@@ -577,7 +572,7 @@ pub fn plot_png(study: &AdaptiveStudy, title: &str) -> Result<Vec<u8>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::Vec3;
+    use raytracer::math::Vec3;
 
     fn uniform(points: &[(u32, f64, f64)]) -> Vec<Run> {
         points

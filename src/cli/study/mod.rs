@@ -10,19 +10,23 @@ use std::time::Instant;
 
 use clap::Parser;
 
-use crate::files::output::{Outputs, PendingFile};
-use crate::files::shown;
-use crate::film::ToneMap;
-use crate::image_io::{encode_image, read_image};
-use crate::integrator::DEFAULT_CUTOFF;
-use crate::metric::Region;
-use crate::render::RenderOptions;
-use crate::sampling::Method;
-use crate::scene::{load, LoadOptions};
-use crate::study::{self, StudyOptions};
+use raytracer::files::output::{Outputs, PendingFile};
+use raytracer::files::shown;
+use raytracer::film::ToneMap;
+use raytracer::image_io::{encode_image, read_image};
+use raytracer::integrator::DEFAULT_CUTOFF;
+use raytracer::metric::Region;
+use raytracer::render::RenderOptions;
+use raytracer::sampling::Method;
+use raytracer::scene::{load, LoadOptions};
+mod adaptive;
+mod plot;
+mod runs;
 
-use super::interrupt::Interrupt;
-use super::{exit_code, values};
+use runs::StudyOptions;
+
+use crate::interrupt::Interrupt;
+use crate::{exit_code, values};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -124,7 +128,7 @@ struct StudyCli {
     strict: bool,
     /// Integrator: whitted or path. Default: the scene's rendermode.
     #[arg(long)]
-    integrator: Option<crate::integrator::Kind>,
+    integrator: Option<raytracer::integrator::Kind>,
 }
 
 /// Parses the subcommand's command line without running it.
@@ -163,7 +167,7 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     }
 }
 
-fn load_scene(cli: &StudyCli) -> Result<crate::scene::Scene, String> {
+fn load_scene(cli: &StudyCli) -> Result<raytracer::scene::Scene, String> {
     let options = LoadOptions {
         width: cli.width.or(if cli.quick { Some(48) } else { None }),
         height: cli.height,
@@ -171,7 +175,7 @@ fn load_scene(cli: &StudyCli) -> Result<crate::scene::Scene, String> {
     };
     let scene = load(&cli.scene, &options).map_err(|e| e.to_string())?;
     if cli.strict {
-        super::strict(&scene)?;
+        crate::strict(&scene)?;
     } else {
         for w in &scene.warnings {
             eprintln!("warning: {w}");
@@ -183,9 +187,9 @@ fn load_scene(cli: &StudyCli) -> Result<crate::scene::Scene, String> {
 /// What both studies start from: the scene, its integrator, the reference, and the outputs
 /// claimed (so that an unwritable folder is reported before any run).
 struct Setup {
-    scene: crate::scene::Scene,
-    integrator: crate::integrator::Kind,
-    reference: crate::film::Film,
+    scene: raytracer::scene::Scene,
+    integrator: raytracer::integrator::Kind,
+    reference: raytracer::film::Film,
     outputs: StudyOutputs,
     /// The further outputs asked of [`setup`], in the output folder, created.
     extra: Vec<(PathBuf, PendingFile)>,
@@ -224,15 +228,15 @@ fn setup(
     cli: &StudyCli,
     interrupt: &Interrupt,
     extra: &[&str],
-    what: fn(crate::integrator::Kind) -> &'static str,
+    what: fn(raytracer::integrator::Kind) -> &'static str,
     render_reference: impl FnOnce(
-        &crate::scene::Scene,
-        crate::integrator::Kind,
+        &raytracer::scene::Scene,
+        raytracer::integrator::Kind,
         u32,
-    ) -> Result<crate::film::Film, crate::render::RenderError>,
+    ) -> Result<raytracer::film::Film, raytracer::render::RenderError>,
 ) -> Result<Setup, String> {
     let scene = load_scene(cli)?;
-    let integrator = crate::integrator::Kind::chosen(cli.integrator, &scene);
+    let integrator = raytracer::integrator::Kind::chosen(cli.integrator, &scene);
     let (w, h) = (scene.camera.width, scene.camera.height);
     if let Some(r) = cli.region {
         if !r.fits(w, h) {
@@ -347,8 +351,8 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         reference,
         outputs,
         extra: _,
-    } = setup(cli, interrupt, &[], study::counted, study::reference)?;
-    let counted = study::counted(integrator);
+    } = setup(cli, interrupt, &[], runs::counted, runs::reference)?;
+    let counted = runs::counted(integrator);
     let (w, h) = (scene.camera.width, scene.camera.height);
     let options = StudyOptions {
         samplers: cli.samplers.clone(),
@@ -362,7 +366,7 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         region: cli.region,
         seed: cli.seed,
     };
-    let runs = study::run_study(&scene, &reference, &options, |i, n, r| {
+    let runs = runs::run_study(&scene, &reference, &options, |i, n, r| {
         eprintln!(
             "study: [{i}/{n}] {:<8} {:>5} {counted}  {:.4} s  MSE {:.3e}  region {:.3e}  FLIP {:.4}",
             r.sampler.to_string(),
@@ -384,22 +388,22 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         ));
     }
     let (name, what) = described(cli);
-    let png = study::plot_png(&runs, &format!("{name}: {what}, {w}×{h}"), counted)?;
-    outputs.write(interrupt, study::csv_text(&runs).as_bytes(), &png)?;
+    let png = plot::plot_png(&runs, &format!("{name}: {what}, {w}×{h}"), counted)?;
+    outputs.write(interrupt, runs::csv_text(&runs).as_bytes(), &png)?;
 
     outln!(
         "MSE over the {what}; slopes fitted over runs with ≥ {} {counted}",
-        study::FIT_MIN_SAMPLES
+        runs::FIT_MIN_SAMPLES
     );
     outln!("{:<10} {:>8}", "sampler", "slope");
     for &m in &options.samplers {
-        match study::mse_slope(&runs, m) {
+        match runs::mse_slope(&runs, m) {
             Some(s) => outln!("{:<10} {s:>8.3}", m.to_string()),
             None => outln!("{:<10} {:>8}", m.to_string(), "-"),
         }
     }
     let target = cli.target_mse.or_else(|| {
-        let rs = study::runs_of(&runs, Method::Random);
+        let rs = runs::runs_of(&runs, Method::Random);
         let at = rs.iter().rev().find(|r| r.samples <= 256)?;
         Some(at.mse_region)
     });
@@ -407,9 +411,9 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         None => outln!("no target MSE: give --target-mse or include random"),
         Some(target) => {
             outln!("time to reach MSE {target:.3e}:");
-            let base = study::time_to_reach(&runs, Method::Random, target);
+            let base = runs::time_to_reach(&runs, Method::Random, target);
             for &m in &options.samplers {
-                match study::time_to_reach(&runs, m, target) {
+                match runs::time_to_reach(&runs, m, target) {
                     Some(t) => {
                         let ratio = base
                             .map(|b| format!("  ({:.3}× random)", t / b))
@@ -444,14 +448,14 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         interrupt,
         &[ALLOCATION_MAP],
         |_| "samples per pixel",
-        study::adaptive::reference,
+        adaptive::reference,
     )?;
     let max_samples = if cli.quick {
         cli.max_samples.min(QUICK_ADAPTIVE_CAP)
     } else {
         cli.max_samples
     };
-    let options = study::adaptive::AdaptiveStudyOptions {
+    let options = adaptive::AdaptiveStudyOptions {
         max_samples,
         thresholds: cli.thresholds.clone(),
         integrator,
@@ -460,7 +464,7 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         seed: cli.seed,
         variance_samples: cli.variance_samples.unwrap_or(max_samples).min(max_samples),
     };
-    let result = study::adaptive::run_adaptive_study(&scene, &reference, &options, |i, n, line| {
+    let result = adaptive::run_adaptive_study(&scene, &reference, &options, |i, n, line| {
         eprintln!("study: [{i}/{n}] {line}");
     })
     .map_err(|e| e.to_string())?;
@@ -474,18 +478,14 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
     }
     let (name, what) = described(cli);
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let png = study::adaptive::plot_png(
+    let png = adaptive::plot_png(
         &result,
         &format!(
             "{name}: {what}, {w}×{h}, at most {} spp",
             options.max_samples
         ),
     )?;
-    outputs.write(
-        interrupt,
-        study::adaptive::csv_text(&result).as_bytes(),
-        &png,
-    )?;
+    outputs.write(interrupt, adaptive::csv_text(&result).as_bytes(), &png)?;
     // A region without noise has no allocation: its pending file is dropped, unwritten.
     if let (Some(map), Some((path, pending))) = (&result.allocation_map, extra.pop()) {
         let bytes = encode_image(&path, map, ToneMap::Linear, 1.0).map_err(|e| e.to_string())?;
@@ -525,17 +525,17 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             r.mse_region,
             r.uniform_seconds
                 .map_or("out of range".into(), |u| format!("{u:.4}")),
-            study::adaptive::times(r.ratio()),
+            adaptive::times(r.ratio()),
             r.uniform_samples.map_or("-".into(), |u| format!("{u:.1}")),
-            study::adaptive::times(r.samples_ratio()),
-            study::adaptive::times(r.known_noise_ratio)
+            adaptive::times(r.samples_ratio()),
+            adaptive::times(r.known_noise_ratio)
         );
     }
     if let Some(b) = result.bound {
         outln!(
             "best allocation: {b:.2}× uniform's samples at equal MSE (each pixel's samples in \
              proportion to its noise, measured by {} renders of {} spp)",
-            study::adaptive::VARIANCE_RENDERS,
+            adaptive::VARIANCE_RENDERS,
             result.variance_samples
         );
     }
@@ -543,7 +543,7 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         outln!(
             "best allocation at the uniform runs' convergence, MSE ∝ n^-{a:.2} from {} spp up: \
              {b:.2}× uniform's samples",
-            study::adaptive::FIT_FROM_SAMPLES
+            adaptive::FIT_FROM_SAMPLES
         );
         outln!(
             "known: the samples ratio the same stopping rule would reach with an exact error \
@@ -568,7 +568,7 @@ fn skip_work(cli: &StudyCli) -> Result<(), String> {
         cli.spp,
         cli.runs
     );
-    let rows = study::skip_work(&scene, &base, cli.adc_bailout, cli.runs as usize)
+    let rows = runs::skip_work(&scene, &base, cli.adc_bailout, cli.runs as usize)
         .map_err(|e| e.to_string())?;
     if let Some(r) = rows
         .iter()

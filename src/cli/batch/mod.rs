@@ -9,17 +9,23 @@ use std::sync::Mutex;
 
 use clap::Parser;
 
-use crate::batch::{self, report, ImagePlan, Row, RunOptions, Status, SummaryFormat, Totals};
-use crate::files::output::{OutputError, Outputs, PendingFile};
-use crate::files::shown;
+mod discover;
+mod report;
+mod run;
+mod summary;
 
-use crate::image_io::OutputFormat;
-use crate::scene::LoadOptions;
+use raytracer::files::output::{OutputError, Outputs, PendingFile};
+use raytracer::files::shown;
+use run::{ImagePlan, Row, RunOptions, Status};
+use summary::{SummaryFormat, Totals};
 
-use super::exit_code::{self, Failure};
-use super::image_flags::ImageFlags;
-use super::interrupt::Interrupt;
-use super::values;
+use raytracer::image_io::OutputFormat;
+use raytracer::scene::LoadOptions;
+
+use crate::exit_code::{self, Failure};
+use crate::image_flags::ImageFlags;
+use crate::interrupt::Interrupt;
+use crate::values;
 
 /// Image formats for `--format`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -142,14 +148,14 @@ pub(super) fn try_parse(args: &[std::ffi::OsString]) -> Result<(), clap::Error> 
     <BatchCli as Parser>::try_parse_from(args).map(drop)
 }
 
-/// [`batch::Writer`] through the interrupt handler, one file at a time: the handler's record of
+/// [`run::Writer`] through the interrupt handler, one file at a time: the handler's record of
 /// temporary files is kept for one command writing one file at a time.
 struct Serial<'a> {
     interrupt: &'a Interrupt,
     lock: Mutex<()>,
 }
 
-impl batch::Writer for Serial<'_> {
+impl run::Writer for Serial<'_> {
     fn create(&self, path: &Path) -> Result<PendingFile, OutputError> {
         let _one = self.lock.lock().unwrap_or_else(|e| e.into_inner());
         self.interrupt.create(path)
@@ -213,14 +219,14 @@ fn run(cli: &BatchCli, interrupt: &Interrupt) -> Result<Totals, Failure> {
     }
     // Not the output folder (its summary.json, from an earlier run). A summary given inside a
     // scene folder stays a scene, and writing over it is refused below.
-    let sources = batch::collect_scenes(&cli.scenes, std::slice::from_ref(&cli.out));
+    let sources = discover::collect_scenes(&cli.scenes, std::slice::from_ref(&cli.out));
     if sources.is_empty() {
         return Err(Failure::Usage(
             "no scene files: the folders given hold no .json files".into(),
         ));
     }
     let format = OutputFormat::from(cli.format);
-    let jobs = batch::plan(&sources, &cli.out, format, cli.reference.as_deref());
+    let jobs = run::plan(&sources, &cli.out, format, cli.reference.as_deref());
 
     // The summary and the report: never a scene or a reference; their folders are checked now.
     let mut guard = Outputs::from_inputs(jobs.iter().map(|j| j.scene.as_path()));
@@ -240,7 +246,7 @@ fn run(cli: &BatchCli, interrupt: &Interrupt) -> Result<Totals, Failure> {
     };
 
     let flags = &cli.image;
-    let plan = |scene: &crate::scene::Scene| ImagePlan {
+    let plan = |scene: &raytracer::scene::Scene| ImagePlan {
         render: flags.render_options(scene),
         tonemap: flags.tone_map(scene),
         exposure: flags.display_exposure(scene),
@@ -250,7 +256,7 @@ fn run(cli: &BatchCli, interrupt: &Interrupt) -> Result<Totals, Failure> {
             width: cli.width,
             height: cli.height,
             asset_dirs: cli.asset_dirs.clone(),
-            max_memory: crate::memory::available(),
+            max_memory: raytracer::memory::available(),
             ..LoadOptions::default()
         },
         plan: &plan,
@@ -283,7 +289,7 @@ fn run(cli: &BatchCli, interrupt: &Interrupt) -> Result<Totals, Failure> {
         }
     };
     let pool = values::thread_pool(cli.threads).map_err(Failure::Input)?;
-    let rows = pool.install(|| batch::run(&jobs, &options, &writer, &done));
+    let rows = pool.install(|| run::run(&jobs, &options, &writer, &done));
     if interrupt.is_set() {
         return Err(Failure::Interrupted(NOT_WRITTEN));
     }

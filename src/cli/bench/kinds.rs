@@ -9,12 +9,12 @@
 
 use std::time::{Duration, Instant};
 
-use super::median;
-use crate::accel::Accel;
-use crate::integrator::LIGHT_CLEARANCE;
-use crate::math::{reflect, refract, Vec2};
-use crate::ray::Ray;
-use crate::scene::Scene;
+use super::timing::median;
+use raytracer::accel::Accel;
+use raytracer::integrator::LIGHT_CLEARANCE;
+use raytracer::math::{reflect, refract, Vec2};
+use raytracer::ray::Ray;
+use raytracer::scene::Scene;
 
 /// Most shadow rays per light and camera hit: an area light's samples, stratified.
 pub const SHADOW_SAMPLES_PER_LIGHT: u32 = 16;

@@ -28,16 +28,16 @@ macro_rules! outln {
     }};
 }
 
-pub mod batch;
-pub mod bench;
-pub mod compare;
-pub mod exit_code;
-pub mod image_flags;
-pub mod interrupt;
-pub mod merge;
-pub mod render;
-pub mod study;
-pub mod values;
+mod batch;
+mod bench;
+mod compare;
+mod exit_code;
+mod image_flags;
+mod interrupt;
+mod merge;
+mod render;
+mod study;
+mod values;
 
 use std::ffi::OsString;
 use std::process::ExitCode;
@@ -53,7 +53,7 @@ fn subcommand(args: &[OsString]) -> Option<&'static str> {
 
 /// `--strict`: every warning about `scene` is an error. Prints each as one and fails with their
 /// count; passes a scene without warnings.
-fn strict(scene: &crate::scene::Scene) -> Result<(), String> {
+fn strict(scene: &raytracer::scene::Scene) -> Result<(), String> {
     let n = scene.warnings.len();
     if n == 0 {
         return Ok(());
@@ -68,8 +68,10 @@ fn strict(scene: &crate::scene::Scene) -> Result<(), String> {
 }
 
 /// Runs the command line `args` (program name first) and returns the process's exit status.
-pub fn main(args: &[OsString]) -> ExitCode {
-    crate::files::output::report_file_size_limit();
+fn main() -> ExitCode {
+    let args: Vec<OsString> = std::env::args_os().collect();
+    let args = &args[..];
+    raytracer::files::output::report_file_size_limit();
     match subcommand(args) {
         Some("batch") => batch::main(&args[1..]),
         Some("bench") => bench::main(&args[1..]),
@@ -124,6 +126,45 @@ mod tests {
             "raytracer batch a.json --out o --format bmp",
         ] {
             assert!(parse(bad).is_err(), "{bad}");
+        }
+    }
+
+    /// Words a command line is made of: every flag and value of `fuzz/cli_args.dict` (the
+    /// dictionary of the parser's fuzzing), paths and awkward numbers.
+    fn words() -> Vec<String> {
+        let mut words: Vec<String> = include_str!("../../fuzz/cli_args.dict")
+            .lines()
+            .filter_map(|l| l.trim().strip_prefix('"')?.strip_suffix('"'))
+            .filter(|w| !w.contains('\\'))
+            .map(str::to_string)
+            .collect();
+        for w in [
+            "s.json", "o.png", "o.exr", "dir", "4", "0", "-1", "0.5", "1e-45", "65536", "2,3", "",
+        ] {
+            words.push(w.to_string());
+        }
+        words
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(3000))]
+
+        /// Any command line of up to 24 words, flags and values in any order: parsing never
+        /// panics, an accepted line is accepted again, and every rejection says why.
+        #[test]
+        fn any_command_line_parses_or_is_refused_with_a_message(
+            picks in proptest::collection::vec((0usize..1000, "[ -~]{0,6}"), 0..24)
+        ) {
+            let words = words();
+            let mut args = vec![OsString::from("raytracer")];
+            for (i, free) in picks {
+                // One word in eight is free text, the rest come from the dictionary.
+                args.push(OsString::from(if i % 8 == 7 { free } else { words[i % words.len()].clone() }));
+            }
+            match try_parse(&args) {
+                Ok(()) => proptest::prop_assert!(try_parse(&args).is_ok()),
+                Err(e) => proptest::prop_assert!(!e.to_string().is_empty()),
+            }
         }
     }
 }

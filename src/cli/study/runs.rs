@@ -16,16 +16,12 @@
 //! such edges (Owen, "Scrambled net variance for integrals of smooth functions", Ann. Stat.
 //! 1997, and Mitchell's analysis).
 
-pub mod adaptive;
-
-use image::ImageEncoder;
-
-use crate::film::Film;
-use crate::integrator::{Kind, TraceOptions};
-use crate::metric::{mean_flip, mse, Region};
-use crate::render::{render, RenderError, RenderOptions, RenderOutput};
-use crate::sampling::Method;
-use crate::scene::Scene;
+use raytracer::film::Film;
+use raytracer::integrator::{Kind, TraceOptions};
+use raytracer::metric::{mean_flip, mse, Region};
+use raytracer::render::{render, RenderError, RenderOptions, RenderOutput};
+use raytracer::sampling::Method;
+use raytracer::scene::Scene;
 
 /// The samplers a study compares, in order.
 pub const SAMPLERS: [Method; 3] = [Method::Random, Method::Jittered, Method::Sobol];
@@ -126,7 +122,7 @@ pub fn render_with(
 }
 
 /// The seed of references: one no run of a study uses.
-const REFERENCE_SEED: u64 = 0x5eed_f4ef;
+pub(super) const REFERENCE_SEED: u64 = 0x5eed_f4ef;
 
 /// The reference: for Whitted, jittered shadow rays on a `k×k` grid with `k² ≥ samples`; for path
 /// tracing, `samples` Sobol paths per pixel; under a seed no run of a study uses.
@@ -162,7 +158,7 @@ pub fn median(v: &mut [f64]) -> f64 {
 
 /// `render` done `runs` times (at least once): the last output and the median render time in
 /// seconds.
-fn timed(
+pub(super) fn timed(
     runs: usize,
     mut render: impl FnMut() -> Result<RenderOutput, RenderError>,
 ) -> Result<(RenderOutput, f64), RenderError> {
@@ -253,6 +249,7 @@ pub fn mse_slope(runs: &[Run], sampler: Method) -> Option<f64> {
 
 /// The region MSE `sampler` reaches at `samples` (interpolated in log-log between the runs around
 /// it; `None` outside the runs).
+#[cfg(test)]
 pub fn mse_at(runs: &[Run], sampler: Method, samples: u32) -> Option<f64> {
     let v = runs_of(runs, sampler);
     let pts: Vec<(f64, f64)> = v.iter().map(|r| (r.samples as f64, r.mse_region)).collect();
@@ -317,198 +314,6 @@ pub fn csv_text(runs: &[Run]) -> String {
     s
 }
 
-/// The font the plots' text is drawn with, bundled so that no system font is needed (DejaVu Sans
-/// Mono, Bitstream Vera licence: `assets/fonts/DejaVu-LICENSE.txt`).
-static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSansMono.ttf");
-
-fn register_font() {
-    static ONCE: std::sync::Once = std::sync::Once::new();
-    ONCE.call_once(|| {
-        let _ =
-            plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, FONT);
-    });
-}
-
-/// Colour of a sampler's line.
-fn colour(m: Method) -> plotters::style::RGBColor {
-    match m {
-        Method::Random => plotters::style::RGBColor(214, 39, 40),
-        Method::Jittered => plotters::style::RGBColor(31, 119, 180),
-        Method::Sobol => plotters::style::RGBColor(44, 160, 44),
-    }
-}
-
-/// Draws the log-log plot of the region MSE against samples (left) and against seconds (right),
-/// one line per sampler with its fitted slope in the legend, as a `width × height` RGB8 buffer.
-pub fn plot_rgb(
-    runs: &[Run],
-    title: &str,
-    counted: &str,
-    width: u32,
-    height: u32,
-) -> Result<Vec<u8>, String> {
-    use plotters::prelude::*;
-    register_font();
-    let mut buf = vec![255u8; (width * height * 3) as usize];
-    {
-        let root = BitMapBackend::with_buffer(&mut buf, (width, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let root = root
-            .titled(title, ("sans-serif", 18))
-            .map_err(|e| e.to_string())?;
-        let panels = root.split_evenly((1, 2));
-        let samplers: Vec<Method> = SAMPLERS
-            .into_iter()
-            .filter(|&m| runs.iter().any(|r| r.sampler == m))
-            .collect();
-        let positive = |v: f64| v.is_finite() && v > 0.0;
-        let ys: Vec<f64> = runs
-            .iter()
-            .map(|r| r.mse_region)
-            .filter(|&v| positive(v))
-            .collect();
-        let (ymin, ymax) = bounds(&ys);
-        for (panel, by_time) in panels.iter().zip([false, true]) {
-            let xs: Vec<f64> = runs
-                .iter()
-                .map(|r| if by_time { r.seconds } else { r.samples as f64 })
-                .filter(|&v| positive(v))
-                .collect();
-            let (xmin, xmax) = bounds(&xs);
-            let mut chart = ChartBuilder::on(panel)
-                .margin(12)
-                .x_label_area_size(40)
-                .y_label_area_size(70)
-                .caption(
-                    if by_time {
-                        "MSE vs render time".to_string()
-                    } else {
-                        format!("MSE vs {counted}")
-                    },
-                    ("sans-serif", 16),
-                )
-                .build_cartesian_2d((xmin..xmax).log_scale(), (ymin..ymax).log_scale())
-                .map_err(|e| e.to_string())?;
-            draw_axes(&mut chart, if by_time { "seconds" } else { counted })?;
-            for &m in &samplers {
-                let c = colour(m);
-                let pts: Vec<(f64, f64)> = runs_of(runs, m)
-                    .iter()
-                    .map(|r| {
-                        (
-                            if by_time { r.seconds } else { r.samples as f64 },
-                            r.mse_region,
-                        )
-                    })
-                    .filter(|&(x, y)| positive(x) && positive(y))
-                    .collect();
-                let label = match mse_slope(runs, m) {
-                    Some(s) => format!("{m} (slope {s:.2})"),
-                    None => m.to_string(),
-                };
-                chart
-                    .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
-                    .map_err(|e| e.to_string())?
-                    .label(label)
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
-                    });
-                chart
-                    .draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))
-                    .map_err(|e| e.to_string())?;
-            }
-            draw_legend(&mut chart)?;
-        }
-        root.present().map_err(|e| e.to_string())?;
-    }
-    Ok(buf)
-}
-
-/// A log-log chart drawn into an RGB buffer.
-type LogChart<'a, 'b> = plotters::chart::ChartContext<
-    'a,
-    plotters::backend::BitMapBackend<'b>,
-    plotters::coord::cartesian::Cartesian2d<
-        plotters::coord::combinators::LogCoord<f64>,
-        plotters::coord::combinators::LogCoord<f64>,
-    >,
->;
-
-/// The axes and grid of the studies' plots: `x` described as `x_desc`, `y` the MSE, log ticks.
-fn draw_axes<'a, 'b: 'a>(chart: &mut LogChart<'a, 'b>, x_desc: &str) -> Result<(), String> {
-    chart
-        .configure_mesh()
-        .x_desc(x_desc)
-        .y_desc("MSE")
-        .x_label_formatter(&|v| tick(*v))
-        .y_label_formatter(&|v| tick(*v))
-        .label_style(("sans-serif", 12))
-        .draw()
-        .map_err(|e| e.to_string())
-}
-
-/// The legend of the studies' plots: lower left, on a pale box.
-fn draw_legend<'a, 'b: 'a>(chart: &mut LogChart<'a, 'b>) -> Result<(), String> {
-    use plotters::prelude::*;
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerLeft)
-        .label_font(("sans-serif", 13))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .draw()
-        .map_err(|e| e.to_string())
-}
-
-/// A `width × height` RGB8 buffer as PNG bytes.
-fn encode_png(buf: &[u8], width: u32, height: u32) -> Result<Vec<u8>, String> {
-    let mut png = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut png)
-        .write_image(buf, width, height, image::ExtendedColorType::Rgb8)
-        .map_err(|e| format!("cannot encode the plot: {e}"))?;
-    Ok(png)
-}
-
-/// A log-axis tick label: only 1, 2 and 5 times a power of ten are written, so labels do not
-/// crowd.
-fn tick(v: f64) -> String {
-    if v <= 0.0 {
-        return String::new();
-    }
-    let e = v.log10().floor();
-    let m = v / 10f64.powf(e);
-    if [1.0, 2.0, 5.0].iter().any(|&k| (m - k).abs() < 1e-6 * k) {
-        if (-2.0..=4.0).contains(&e) {
-            format!("{v}")
-        } else {
-            format!("{m:.0}e{e}")
-        }
-    } else {
-        String::new()
-    }
-}
-
-/// Log-scale axis bounds around `v` with some room (a decade around 1 for no values).
-fn bounds(v: &[f64]) -> (f64, f64) {
-    let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = v.iter().copied().fold(0.0f64, f64::max);
-    if !lo.is_finite() || hi <= 0.0 {
-        return (0.1, 10.0);
-    }
-    let (lo, hi) = if lo == hi {
-        (lo / 2.0, hi * 2.0)
-    } else {
-        (lo, hi)
-    };
-    (lo / 1.5, hi * 1.5)
-}
-
-/// The plot of [`plot_rgb`] as PNG bytes.
-pub fn plot_png(runs: &[Run], title: &str, counted: &str) -> Result<Vec<u8>, String> {
-    let (w, h) = (1200, 520);
-    encode_png(&plot_rgb(runs, title, counted, w, h)?, w, h)
-}
-
 /// One variant of a work-skipping comparison.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SkipRun {
@@ -565,7 +370,9 @@ pub fn skip_work(
 
 #[cfg(test)]
 mod tests {
+    use super::super::plot::{colour, plot_rgb};
     use super::*;
+    use raytracer::scene::{load, LoadOptions};
 
     fn run(sampler: Method, samples: u32, seconds: f64, e: f64) -> Run {
         Run {
@@ -631,5 +438,34 @@ mod tests {
         for m in SAMPLERS {
             assert!(has(colour(m)), "{m}");
         }
+    }
+
+    /// A study of a path-traced scene counts samples per pixel, and every sampler's error falls as
+    /// they grow: each run's paths come from the sampler under study.
+    #[test]
+    fn a_path_traced_study_counts_pixel_samples_and_converges() {
+        let options = LoadOptions {
+            width: Some(24),
+            ..Default::default()
+        };
+        let scene = load(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell.json"),
+            &options,
+        )
+        .unwrap();
+        let integrator = Kind::of_scene(&scene);
+        assert_eq!(integrator, Kind::Path);
+        let reference = reference(&scene, integrator, 1024).unwrap();
+        let study = StudyOptions {
+            max_samples: 64,
+            integrator,
+            ..Default::default()
+        };
+        let runs = run_study(&scene, &reference, &study, |_, _, _| {}).unwrap();
+        for m in [Method::Random, Method::Jittered, Method::Sobol] {
+            let at = |n| mse_at(&runs, m, n).unwrap();
+            assert!(at(64) < 0.3 * at(4), "{m}: {} vs {}", at(64), at(4));
+        }
+        assert_eq!(counted(integrator), "samples per pixel");
     }
 }

@@ -1,7 +1,7 @@
 //! `raytracer bench`: the command line of the benchmarks in [`crate::bench`].
 
-use crate::files::output::Outputs;
-use crate::files::shown;
+use raytracer::files::output::Outputs;
+use raytracer::files::shown;
 use std::ffi::OsString;
 use std::io::Write;
 use std::path::PathBuf;
@@ -10,16 +10,23 @@ use std::time::Duration;
 
 use clap::Parser;
 
-use crate::accel::{Accel, AccelKind};
-use crate::bench::{
-    crossover, default_scenes_dir, format_csv, format_table, kinds, row_fields,
-    sphere_grid_triangles, table1, throughput, TableOptions, Throughput, TABLE_HEADER,
-};
+use raytracer::accel::{Accel, AccelKind};
+mod crossover;
+mod kinds;
+mod rays;
+mod scenes;
+mod table;
+mod timing;
 
-use crate::scene::{load, LoadOptions};
+use crossover::crossover;
+use rays::{throughput, Throughput};
+use scenes::{default_scenes_dir, sphere_grid_triangles};
+use table::{format_csv, format_table, row_fields, table1, TableOptions, TABLE_HEADER};
 
-use super::interrupt::Interrupt;
-use super::{exit_code, values};
+use raytracer::scene::{load, LoadOptions};
+
+use crate::interrupt::Interrupt;
+use crate::{exit_code, values};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -259,8 +266,8 @@ fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
             "Table 1: 1 spp, {threads} thread(s), leaf size {leaf_size}, medians of {runs} run(s); \
              memory = accelerator + primitive records ({} B each; none for the triangles of \
              meshes of over {} faces)",
-            std::mem::size_of::<crate::geometry::Primitive>(),
-            crate::geometry::primitives::RECORD_MESH_MAX_FACES,
+            std::mem::size_of::<raytracer::geometry::Primitive>(),
+            raytracer::geometry::primitives::RECORD_MESH_MAX_FACES,
         );
         let rows = table1(&options, |r| {
             eprintln!("  {}", row_fields(r).join(" "));
