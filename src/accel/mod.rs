@@ -41,11 +41,9 @@ use aabb::Aabb;
 /// Which accelerator to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum AccelKind {
-    /// The four-wide SAH BVH, whatever the scene's size: the SAH makes a tiny scene's root one
-    /// leaf where splitting does not pay, and measured on every bundled scene of fewer than 16
-    /// primitives (where `auto` used to build `flat`) the tree's queries took 0.57–0.92× the
-    /// flat leaf's time and its renders 0.4–14% fewer instructions (`docs/performance.md`, "The
-    /// `auto` choice").
+    /// The four-wide SAH BVH, whatever the scene's size: the SAH itself makes a tiny scene's root
+    /// one leaf where splitting does not pay, so small scenes need no flat special case
+    /// (`docs/performance.md`, "The `auto` choice").
     #[default]
     Auto,
     /// Test every primitive, one by one (the reference every other kind agrees with).
@@ -293,10 +291,8 @@ impl Accel {
 }
 
 /// Whether one of the primitives `indices` accepted by `blocks` is hit with `0 < t < t_max`
-/// (what [`Accel::any`] asks of a tree's unbounded primitives, where it has any). Out of line:
-/// inlined, it changed how the tree's any-hit loops around it were compiled, and a shadow ray on
-/// the grid of `raytracer bench --rays` took 28 more instructions (`benches/peers/embree.py
-/// --instructions`).
+/// (what [`Accel::any`] asks of a tree's unbounded primitives, where it has any). Kept out of line
+/// so that it does not change how the tree's any-hit loops around it are compiled.
 #[inline(never)]
 pub(crate) fn any_among(
     prims: &Primitives,

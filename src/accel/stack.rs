@@ -1,12 +1,11 @@
 //! The fixed-capacity stack a BVH traversal keeps its deferred subtrees on.
 //!
-//! A traversal runs for every ray, and most rays push only a few entries: zeroing a whole
-//! `STACK_SIZE` array each time (what `[x; N]` costs) showed up as 2–3% of a path-traced frame
-//! (`memset` in `perf record` of `scenes/cornell.json`). This stack leaves its slots
-//! uninitialised until pushed. (They are built with an inline `const` block: the plain
-//! `[MaybeUninit::uninit(); N]` next to `len: 0` was still compiled to a memset of the whole
-//! struct.) The one `unsafe` read is of a slot below `len`, which `push` wrote: the invariant is
-//! local to this type and checked by its tests.
+//! A traversal runs for every ray, and most rays push only a few entries, so zeroing a whole
+//! `STACK_SIZE` array each time (what `[x; N]` costs) is not free: this stack leaves its slots
+//! uninitialised until pushed. (They are built with an inline `const` block, which keeps the
+//! compiler from turning the new stack into a memset of the whole struct.) The one `unsafe` read
+//! is of a slot below `len`, which `push` wrote: the invariant is local to this type and checked
+//! by its tests.
 
 use std::mem::MaybeUninit;
 

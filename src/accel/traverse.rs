@@ -73,10 +73,7 @@ pub(super) trait Tree {
 /// The root's box is tested only where the root is a leaf. Above an interior root the node loop
 /// tests the root's children's boxes anyway, and the answer is the primitives' own tests' with or
 /// without it (boxes only prune). Rays that start inside the scene (every secondary ray) always
-/// pass it, and without it the queries of `raytracer bench --rays` on its 8,194-triangle grid
-/// took 60 (camera rays, an eighth of which miss the grid and now pay for a node test), 59
-/// (shadow) and 76 (incoherent) fewer instructions a ray (`benches/peers/embree.py
-/// --instructions`).
+/// pass it, so testing it would be work for nothing on most rays.
 pub(super) fn closest(
     tree: &impl Tree,
     prims: &Primitives,

@@ -14,9 +14,8 @@
 //! the root to a leaf.
 //!
 //! A closest-hit query visits the nearest hit child first and keeps the others on a stack with
-//! their entry distances, in slot order (a full sort by distance cut the primary rays' rate of
-//! `raytracer bench --rays` by 14%: its branches cost more than the order saved); an any-hit
-//! query does not order them at all.
+//! their entry distances, in slot order (a full sort by distance costs more in branches than the
+//! order saves); an any-hit query does not order them at all.
 //!
 //! The leaves are the binary tree's, unchanged (`accel/leaves.rs`), and every box test makes the
 //! decisions of [`super::aabb::slab`] lane for lane, so the answers are exactly those of every
@@ -114,10 +113,10 @@ impl<const C: usize> Node<C> {
     }
 }
 
-/// Slab test of the boxes of `node` (the decisions of [`slab`](super::aabb::slab) on each, for a ray whose
-/// direction has the signs `NX`, `NY`, `NZ`: `true` for negative), four at a time, or eight at a
-/// time where `isa` has AVX2 ([`super::kernels::boxes8`]): a mask of the boxes hit (bit `l`:
-/// slot `l`) and their entry distances.
+/// Slab test of the boxes of `node` (the decisions of [`slab`](super::aabb::slab) on each, for a
+/// ray whose direction has the signs `NX`, `NY`, `NZ`: `true` for negative), four at a time, or
+/// eight at a time where `isa` has AVX2 ([`super::kernels::boxes8`]): a mask of the boxes hit
+/// (bit `l`: slot `l`) and their entry distances.
 #[inline(always)]
 fn hit<const C: usize, const NX: bool, const NY: bool, const NZ: bool>(
     node: &Node<C>,
@@ -273,9 +272,8 @@ impl<const C: usize> WideBvh<C> {
             nodes,
             leaves,
             unbounded,
-            // The eight-wide node test takes one AVX register instead of two SSE ones (0.93–0.97×
-            // the baseline's time on every ray set of `raytracer bench --rays`, G=16); the
-            // four-wide tree's queries took 0.99–1.02× in the VEX encoding, so they keep the
+            // The eight-wide node test takes one AVX register instead of two SSE ones; the
+            // four-wide tree's queries gain nothing from the VEX encoding, so they keep the
             // baseline.
             isa: if C == 2 { Isa::detect() } else { Isa::BASELINE },
         }
@@ -457,9 +455,8 @@ impl<const C: usize> WideBvh<C> {
                         continue;
                     }
                     // Two or more: the nearest is visited now and the others wait on the
-                    // stack, in slot order (see the module docs).
-                    // The slots' entry distances, only the node's own `4·C` (an array of
-                    // `MAX_WIDTH` padded out and returned by value was copied twice).
+                    // stack, in slot order (see the module docs). The entry distances are only
+                    // the node's own `4·C`, so that no padded `MAX_WIDTH` array is copied.
                     let near = entry.map(|e| e.to_array());
                     let near = near.as_flattened();
                     let first = nearest(mask, near);
@@ -499,9 +496,8 @@ impl<const C: usize> WideBvh<C> {
                 let node = &self.nodes[n.index as usize];
                 let (mask, _) = hit::<C, NX, NY, NZ>(node, &r4, t_max, isa);
                 if mask != 0 {
-                    // The first hit child now, the others (in slot order) on the stack: the
-                    // shadow rays of `raytracer bench --rays` gained nothing from visiting the
-                    // nearest first, and a full sort cost them 15%.
+                    // The first hit child now, the others (in slot order) on the stack: for
+                    // shadow rays, visiting the nearest first does not pay, nor does a sort.
                     for l in lanes(mask & (mask - 1)) {
                         stack.push(node.child(l));
                     }

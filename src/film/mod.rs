@@ -156,7 +156,8 @@ pub struct ParseToneMapError(pub String);
 impl FromStr for ToneMap {
     type Err = ParseToneMapError;
 
-    /// Parses `linear`, `srgb`, `reinhard`, `exposure`, `cgr` or `aces` (ASCII case-insensitive, surrounding spaces ignored).
+    /// Parses `linear`, `srgb`, `reinhard`, `exposure`, `cgr` or `aces` (ASCII case-insensitive,
+    /// surrounding spaces ignored).
     fn from_str(s: &str) -> Result<ToneMap, ParseToneMapError> {
         let t = s.trim();
         ToneMap::ALL

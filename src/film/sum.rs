@@ -32,8 +32,8 @@ const ROUNDS_BY_ADDING: f64 = 2_251_799_813_685_248.0;
 /// The most samples one pixel may sum (the integer sum's headroom): 2²⁰.
 pub const MAX_SAMPLES: u32 = 1 << 20;
 
-/// `x` rounded to an integer, ties to even, for `x` up to 2¹⁰⁴. Out of line: inlined, the
-/// compiler computed its software conversion on every sample, the fast path's too.
+/// `x` rounded to an integer, ties to even, for `x` up to 2¹⁰⁴. Kept out of line so that the
+/// compiler does not compute its software conversion on every sample, the fast path's too.
 #[cold]
 #[inline(never)]
 fn wide_round(x: f64) -> i128 {

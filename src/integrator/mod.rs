@@ -216,8 +216,8 @@ pub struct TraceOptions {
     /// Take this many shadow rays per shading point towards every area light instead of its own
     /// count (the total, whatever the method).
     pub light_samples: Option<u32>,
-    /// Probe a 3×3 grid on each area light first and skip its other shadow rays where the probes agree (see
-    /// the module docs).
+    /// Probe a 3×3 grid on each area light first and skip its other shadow rays where the probes
+    /// agree (see [`whitted`]).
     pub adaptive_lights: bool,
     /// Do not trace reflection or refraction rays whose accumulated weight is below this.
     pub cutoff: Option<f32>,

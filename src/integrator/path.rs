@@ -3,10 +3,10 @@
 //! From each camera ray the path scatters off surfaces by their [`Bsdf`]: at every vertex up to
 //! `nbounces` it takes next-event estimates towards every light (one sample per light and vertex,
 //! or the file's `lightsample`, placed as `Light::sample` places them), then continues in one
-//! BSDF-sampled direction. Light is therefore found two ways, by a light sample and by a scattered ray that hits
-//! an emitter, and both are weighted by the power heuristic ([`mis`](super::mis)); directions
-//! only one way can find (point lights; mirror and glass bounces; the background) take all the
-//! weight. A ray that leaves the scene returns `backgroundcolor` as radiance.
+//! BSDF-sampled direction. Light is therefore found two ways, by a light sample and by a scattered
+//! ray that hits an emitter, and both are weighted by the power heuristic ([`mis`](super::mis));
+//! directions only one way can find (point lights; mirror and glass bounces; the background) take
+//! all the weight. A ray that leaves the scene returns `backgroundcolor` as radiance.
 //!
 //! ```text
 //! vertex 0 (first hit) … vertex N (N = nbounces): light samples + one BSDF sample each;
@@ -38,10 +38,9 @@ use super::mis::power_heuristic;
 use super::{finite_radiance, RayCounts, TraceOptions, LIGHT_CLEARANCE};
 
 /// The vertex from which Russian roulette may end a path (the first hit is vertex 0): the first
-/// bounces of indirect light carry most of it and are always traced. Measured on the Cornell box
-/// against Mitsuba's reference (`benches/peers/mitsuba.py`, `docs/path-tracing.md`): starting at
-/// vertex 3 gave 1.7× the MSE of never stopping a six-bounce path, for 0.8× the time; at 5,
-/// 1.4× for 0.9×; so the roulette waits for paths longer than most scenes' `nbounces`.
+/// bounces of indirect light carry most of it and are always traced. An earlier start saves less
+/// time than it adds noise (`docs/path-tracing.md`), so the roulette waits for paths longer than
+/// most scenes' `nbounces`.
 pub const ROULETTE_START: u32 = 8;
 
 /// Highest survival probability: even a white path ends at some point.

@@ -14,10 +14,11 @@
 //! and its attributes (in the header): `raytracer.fingerprint` (16 hex digits, see
 //! [`super::fingerprint`]), `raytracer.spp` (the whole render's samples per pixel),
 //! `raytracer.samples` (`A..B`, the samples this part holds) and `raytracer.exposure` (the
-//! scene's display exposure for each tone map, as `linear=… srgb=… reinhard=… exposure=… cgr=… aces=…`);
-//! `raytracer.adaptive` (f32, only in tiles of adaptive renders: the noise threshold; each
-//! pixel's `sum.count` is then the samples it took, 1 to all); `raytracer.tonemap` (text, only
-//! when the scene asks for a tone map: its name, which a merge then applies by default).
+//! scene's display exposure for each tone map, as
+//! `linear=… srgb=… reinhard=… exposure=… cgr=… aces=…`); `raytracer.adaptive` (f32, only in
+//! tiles of adaptive renders: the noise threshold; each pixel's `sum.count` is then the samples it
+//! took, 1 to all); `raytracer.tonemap` (text, only when the scene asks for a tone map: its name,
+//! which a merge then applies by default).
 
 use std::collections::HashMap;
 use std::io::Cursor;
@@ -181,11 +182,54 @@ pub fn read(path: &Path, max_pixels: u64) -> Result<Part, TileError> {
 
 /// [`read`] from the file's bytes; `path` names it in errors.
 pub fn decode(path: &Path, bytes: &[u8], max_pixels: u64) -> Result<Part, TileError> {
-    let path_buf = || path.to_path_buf();
-    let damaged = |message: String| TileError::Damaged {
-        path: path_buf(),
-        message,
+    let display = tile_header(path, bytes, max_pixels)?;
+    let image = exr::prelude::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(Cursor::new(bytes))
+        .map_err(|e| damaged(path, e.to_string()))?;
+    let tile = TileLayer {
+        path,
+        layer: &image.layer_data,
     };
+    let fingerprint = tile.fingerprint()?;
+    let spp = tile.spp()?;
+    let samples = tile.samples(spp)?;
+    let exposure = tile.exposure()?;
+    let (full, window) = tile.window(display)?;
+    let sums = tile.sums()?;
+    let adaptive = tile.adaptive()?;
+    let tone_map = tile.tone_map()?;
+    let counts = tile.counts(&samples, adaptive)?;
+    Ok(Part {
+        full,
+        window,
+        samples,
+        spp,
+        fingerprint,
+        exposure,
+        tone_map,
+        sums,
+        counts,
+        adaptive,
+    })
+}
+
+/// The [`TileError::Damaged`] error for the file at `path`.
+fn damaged(path: &Path, message: String) -> TileError {
+    TileError::Damaged {
+        path: path.to_path_buf(),
+        message,
+    }
+}
+
+/// Reads only the header: checks that `bytes` are an EXR image written as a tile and claim no more
+/// than `max_pixels` pixels, and returns the display window.
+fn tile_header(path: &Path, bytes: &[u8], max_pixels: u64) -> Result<IntegerBounds, TileError> {
+    let path_buf = || path.to_path_buf();
     let meta = exr::meta::MetaData::read_from_buffered(Cursor::new(bytes), false).map_err(|e| {
         TileError::NotExr {
             path: path_buf(),
@@ -213,129 +257,174 @@ pub fn decode(path: &Path, bytes: &[u8], max_pixels: u64) -> Result<Part, TileEr
             });
         }
     }
-    let image = exr::prelude::read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_buffered(Cursor::new(bytes))
-        .map_err(|e| damaged(e.to_string()))?;
-    let layer = &image.layer_data;
-    let attrs = &layer.attributes.other;
-    let text = |key: &str| -> Result<String, TileError> {
-        match attrs.get(&Text::from(key)) {
+    Ok(display)
+}
+
+/// A decoded tile's layer, read field by field into a [`Part`]; every error names `path`.
+struct TileLayer<'a> {
+    path: &'a Path,
+    layer: &'a Layer<AnyChannels<FlatSamples>>,
+}
+
+impl TileLayer<'_> {
+    /// The [`TileError::Damaged`] error for this tile.
+    fn damaged(&self, message: String) -> TileError {
+        damaged(self.path, message)
+    }
+
+    /// The header attribute `key`, of any type.
+    fn attribute(&self, key: &str) -> Option<&AttributeValue> {
+        self.layer.attributes.other.get(&Text::from(key))
+    }
+
+    /// The text attribute `key`.
+    fn text(&self, key: &str) -> Result<String, TileError> {
+        match self.attribute(key) {
             Some(AttributeValue::Text(t)) => Ok(t.to_string()),
-            _ => Err(damaged(format!("no text attribute '{key}'"))),
+            _ => Err(self.damaged(format!("no text attribute '{key}'"))),
         }
-    };
-    let fingerprint = u64::from_str_radix(&text(FINGERPRINT)?, 16)
-        .map_err(|_| damaged(format!("'{FINGERPRINT}' is not 16 hex digits")))?;
-    let spp = match attrs.get(&Text::from(SPP)) {
-        Some(AttributeValue::I32(n)) if *n > 0 => *n as u32,
-        _ => return Err(damaged(format!("no positive integer attribute '{SPP}'"))),
-    };
-    let samples = parse_range(&text(SAMPLES)?)
-        .filter(|r| r.start < r.end && r.end <= spp)
-        .ok_or_else(|| damaged(format!("'{SAMPLES}' is not a range A..B within 0..{spp}")))?;
-    let exposure = parse_exposure(&text(EXPOSURE)?)
-        .ok_or_else(|| damaged(format!("'{EXPOSURE}' does not list every tone map")))?;
-
-    if display.position != Vec2(0, 0) {
-        return Err(damaged("the display window does not start at 0,0".into()));
-    }
-    let (pos, size) = (layer.attributes.layer_position, layer.size);
-    let window = match (u32::try_from(pos.0), u32::try_from(pos.1)) {
-        (Ok(x0), Ok(y0)) => PixelRect {
-            x0,
-            y0,
-            x1: x0 + size.0 as u32,
-            y1: y0 + size.1 as u32,
-        },
-        _ => {
-            return Err(damaged(
-                "the data window starts left of or above the image".into(),
-            ))
-        }
-    };
-    let full = (display.size.0 as u32, display.size.1 as u32);
-    if !window.within(&PixelRect::full(full.0, full.1)) || window.is_empty() {
-        return Err(damaged(format!(
-            "the data window {window} is not inside the {}×{} display window",
-            full.0, full.1
-        )));
     }
 
-    let n = size.area();
-    let channel = |name: &str| -> Result<&[u32], TileError> {
-        let found = layer.channel_data.list.iter().find(|c| c.name == *name);
+    /// The u32 channel `name`, one sample per pixel.
+    fn channel(&self, name: &str) -> Result<&[u32], TileError> {
+        let n = self.layer.size.area();
+        let found = self
+            .layer
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name == *name);
         match found.map(|c| &c.sample_data) {
             Some(FlatSamples::U32(v)) if v.len() == n => Ok(v),
-            Some(_) => Err(damaged(format!("channel '{name}' is not {n} u32 samples"))),
-            None => Err(damaged(format!("no channel '{name}'"))),
-        }
-    };
-    let mut sums = vec![PixelSum::default(); n];
-    for (c, name) in COLOURS.iter().enumerate() {
-        let words: Vec<&[u32]> = (0..4)
-            .map(|w| channel(&format!("sum.{name}.{w}")))
-            .collect::<Result<_, _>>()?;
-        for (i, s) in sums.iter_mut().enumerate() {
-            let bits = (0..4).fold(0u128, |acc, w| acc | u128::from(words[w][i]) << (32 * w));
-            s.0[c].fixed = bits as i128;
+            Some(_) => Err(self.damaged(format!("channel '{name}' is not {n} u32 samples"))),
+            None => Err(self.damaged(format!("no channel '{name}'"))),
         }
     }
-    let flags = channel("sum.flags")?;
-    for (s, &f) in sums.iter_mut().zip(flags) {
-        if f >> 9 != 0 {
-            return Err(damaged(format!("unknown bits in sum.flags: {f:#x}")));
-        }
-        for (c, ch) in s.0.iter_mut().enumerate() {
-            let b = f >> (3 * c);
-            *ch = ChannelSum {
-                nan: b & 1 != 0,
-                pos_inf: b & 2 != 0,
-                neg_inf: b & 4 != 0,
-                ..*ch
-            };
+
+    /// What made the pixels ([`super::fingerprint`]), from 16 hex digits.
+    fn fingerprint(&self) -> Result<u64, TileError> {
+        u64::from_str_radix(&self.text(FINGERPRINT)?, 16)
+            .map_err(|_| self.damaged(format!("'{FINGERPRINT}' is not 16 hex digits")))
+    }
+
+    /// The whole render's samples per pixel.
+    fn spp(&self) -> Result<u32, TileError> {
+        match self.attribute(SPP) {
+            Some(AttributeValue::I32(n)) if *n > 0 => Ok(*n as u32),
+            _ => Err(self.damaged(format!("no positive integer attribute '{SPP}'"))),
         }
     }
-    let adaptive = match attrs.get(&Text::from(ADAPTIVE)) {
-        Some(AttributeValue::F32(t)) if *t > 0.0 => Some(*t),
-        Some(_) => return Err(damaged(format!("'{ADAPTIVE}' is not a positive number"))),
-        None => None,
-    };
-    let tone_map = match attrs.get(&Text::from(TONEMAP)) {
-        None => None,
-        Some(_) => Some(
-            text(TONEMAP)?
-                .parse::<ToneMap>()
-                .map_err(|e| damaged(format!("'{TONEMAP}': {e}")))?,
-        ),
-    };
-    let counts = channel("sum.count")?.to_vec();
-    let expected = samples.end - samples.start;
-    let fits = |k: u32| match adaptive {
-        Some(_) => (1..=expected).contains(&k),
-        None => k == expected,
-    };
-    if let Some(k) = counts.iter().find(|&&k| !fits(k)) {
-        return Err(damaged(format!(
-            "a pixel holds {k} samples where '{SAMPLES}' says {expected}"
-        )));
+
+    /// The samples this part holds, a range within `0..spp`.
+    fn samples(&self, spp: u32) -> Result<std::ops::Range<u32>, TileError> {
+        parse_range(&self.text(SAMPLES)?)
+            .filter(|r| r.start < r.end && r.end <= spp)
+            .ok_or_else(|| self.damaged(format!("'{SAMPLES}' is not a range A..B within 0..{spp}")))
     }
-    Ok(Part {
-        full,
-        window,
-        samples,
-        spp,
-        fingerprint,
-        exposure,
-        tone_map,
-        sums,
-        counts,
-        adaptive,
-    })
+
+    /// The scene's display exposure for each tone map, in [`ToneMap::ALL`]'s order.
+    fn exposure(&self) -> Result<[f32; ToneMap::ALL.len()], TileError> {
+        parse_exposure(&self.text(EXPOSURE)?)
+            .ok_or_else(|| self.damaged(format!("'{EXPOSURE}' does not list every tone map")))
+    }
+
+    /// The whole image's size and the part's pixels in it, from the display and data windows.
+    fn window(&self, display: IntegerBounds) -> Result<((u32, u32), PixelRect), TileError> {
+        if display.position != Vec2(0, 0) {
+            return Err(self.damaged("the display window does not start at 0,0".into()));
+        }
+        let (pos, size) = (self.layer.attributes.layer_position, self.layer.size);
+        let window = match (u32::try_from(pos.0), u32::try_from(pos.1)) {
+            (Ok(x0), Ok(y0)) => PixelRect {
+                x0,
+                y0,
+                x1: x0 + size.0 as u32,
+                y1: y0 + size.1 as u32,
+            },
+            _ => {
+                return Err(self.damaged("the data window starts left of or above the image".into()))
+            }
+        };
+        let full = (display.size.0 as u32, display.size.1 as u32);
+        if !window.within(&PixelRect::full(full.0, full.1)) || window.is_empty() {
+            return Err(self.damaged(format!(
+                "the data window {window} is not inside the {}×{} display window",
+                full.0, full.1
+            )));
+        }
+        Ok((full, window))
+    }
+
+    /// The exact sums: each colour's four words, then the non-finite flags.
+    fn sums(&self) -> Result<Vec<PixelSum>, TileError> {
+        let mut sums = vec![PixelSum::default(); self.layer.size.area()];
+        for (c, name) in COLOURS.iter().enumerate() {
+            let words: Vec<&[u32]> = (0..4)
+                .map(|w| self.channel(&format!("sum.{name}.{w}")))
+                .collect::<Result<_, _>>()?;
+            for (i, s) in sums.iter_mut().enumerate() {
+                let bits = (0..4).fold(0u128, |acc, w| acc | u128::from(words[w][i]) << (32 * w));
+                s.0[c].fixed = bits as i128;
+            }
+        }
+        let flags = self.channel("sum.flags")?;
+        for (s, &f) in sums.iter_mut().zip(flags) {
+            if f >> 9 != 0 {
+                return Err(self.damaged(format!("unknown bits in sum.flags: {f:#x}")));
+            }
+            for (c, ch) in s.0.iter_mut().enumerate() {
+                let b = f >> (3 * c);
+                *ch = ChannelSum {
+                    nan: b & 1 != 0,
+                    pos_inf: b & 2 != 0,
+                    neg_inf: b & 4 != 0,
+                    ..*ch
+                };
+            }
+        }
+        Ok(sums)
+    }
+
+    /// The noise threshold of an adaptive render's tile, `None` in other tiles.
+    fn adaptive(&self) -> Result<Option<f32>, TileError> {
+        match self.attribute(ADAPTIVE) {
+            Some(AttributeValue::F32(t)) if *t > 0.0 => Ok(Some(*t)),
+            Some(_) => Err(self.damaged(format!("'{ADAPTIVE}' is not a positive number"))),
+            None => Ok(None),
+        }
+    }
+
+    /// The tone map the scene asks for, `None` where it asks for none.
+    fn tone_map(&self) -> Result<Option<ToneMap>, TileError> {
+        match self.attribute(TONEMAP) {
+            None => Ok(None),
+            Some(_) => Ok(Some(
+                self.text(TONEMAP)?
+                    .parse::<ToneMap>()
+                    .map_err(|e| self.damaged(format!("'{TONEMAP}': {e}")))?,
+            )),
+        }
+    }
+
+    /// Each pixel's sample count: all of `samples`, or 1 to all of them in an adaptive render.
+    fn counts(
+        &self,
+        samples: &std::ops::Range<u32>,
+        adaptive: Option<f32>,
+    ) -> Result<Vec<u32>, TileError> {
+        let counts = self.channel("sum.count")?.to_vec();
+        let expected = samples.end - samples.start;
+        let fits = |k: u32| match adaptive {
+            Some(_) => (1..=expected).contains(&k),
+            None => k == expected,
+        };
+        if let Some(k) = counts.iter().find(|&&k| !fits(k)) {
+            return Err(self.damaged(format!(
+                "a pixel holds {k} samples where '{SAMPLES}' says {expected}"
+            )));
+        }
+        Ok(counts)
+    }
 }
 
 fn parse_range(s: &str) -> Option<std::ops::Range<u32>> {

@@ -4,8 +4,8 @@
 //! Round boundaries double: 4, 8, 16, … samples (fewer rounds for small `spp`), so a pixel that
 //! stops after round r holds exactly samples `0..n_r` of the full pattern. After every round from
 //! the `EARLY_DECISION`th sample on (where a pixel needs half the threshold to stop; from the
-//! `FIRST_DECISION`th on, the threshold), the error of each pixel is estimated from how far apart the
-//! means of four groups of its samples lie, after Dammertz et al. 2010 ("A hierarchical automatic
+//! `FIRST_DECISION`th on, the threshold), the error of each pixel is estimated from how far apart
+//! the means of four groups of its samples lie, after Dammertz et al. 2010 ("A hierarchical automatic
 //! stopping condition for Monte Carlo global illumination") and Cycles (Blender's
 //! `kernel/film/adaptive_sampling.h`), which compare two groups. The groups are the four
 //! consecutive quarters of the pixel's `n` samples (a round's two halves and the two halves of
@@ -23,7 +23,7 @@
 //! one, so a noisy pixel looks converged by chance far less often. Cycles splits odd-numbered
 //! from even-numbered samples; with Owen-scrambled Sobol points (the default under `--adaptive`)
 //! those lie in opposite halves of the pixel, so their difference measures the pixel's gradient
-//! and an edge never looked converged. Each quarter here is an aligned block of Sobol points,
+//! and an edge would never look converged. Each quarter here is an aligned block of Sobol points,
 //! stratified over the whole pixel.
 //!
 //! A pixel goes on while the largest error in its 3×3 neighbourhood is above the threshold, so a
@@ -54,8 +54,8 @@ pub struct Adaptive {
     /// A pixel stops when the error estimate of every pixel around it is at most this.
     pub threshold: f32,
     /// Stop starting pixels once this much time has passed since the render began, and keep
-    /// what is there: each pixel the rounds it finished, the first round at least. The one setting whose result depends
-    /// on timing, and so on the machine and its load.
+    /// what is there: each pixel the rounds it finished, the first round at least. The one
+    /// setting whose result depends on timing, and so on the machine and its load.
     pub time_limit: Option<Duration>,
 }
 
@@ -66,20 +66,16 @@ pub const DEFAULT_THRESHOLD: f32 = 0.01;
 const FIRST_ROUND: u32 = 4;
 
 /// The samples after which a pixel may stop at the full threshold (above 0). Deciding from 4
-/// samples let pixels of a noisy region stop on a lucky draw: on `scenes/penumbra.json` that
-/// gave 1.0–1.35× uniform sampling's time at equal error for thresholds 0.04 and 0.02, at 16
-/// samples 0.90–0.95× (`benches/adaptive.py`, with an earlier two-group estimate;
-/// docs/adaptive.md). Cycles waits longer for its estimate, max(4, ⌈16/T^0.3⌉) samples (64 at
-/// T = 0.01, Blender's `scene/integrator.cpp`); here that cost the thin-lens scene 1.3× the time,
-/// as its in-focus half then takes 64 samples where 16 already agree.
+/// samples lets pixels of a noisy region stop on a lucky draw. Cycles waits longer for its
+/// estimate, max(4, ⌈16/T^0.3⌉) samples (64 at T = 0.01, Blender's `scene/integrator.cpp`), which
+/// would make the in-focus half of a thin-lens scene take 64 samples where 16 already agree
+/// (docs/adaptive.md).
 const FIRST_DECISION: u32 = 16;
 
 /// The samples after which a pixel may stop early, at [`EARLY_SHARE`] of the threshold: where
 /// every error around a pixel is that far below the threshold after 8 samples, 8 more rarely
-/// change the answer. With it the samples ratio at equal error (`raytracer study --adaptive`)
-/// fell from 0.39 and 0.26 to 0.23 and 0.22 on the Cornell box at T = 0.64 and 0.32, from 0.69
-/// to 0.56 on `arealight_jittered.json` at T = 0.08 and from 0.78 to 0.69 on the penumbra at
-/// T = 0.04, and moved by 0.01 or less at every tighter threshold (docs/adaptive.md).
+/// change the answer, so stopping there saves samples at loose thresholds and leaves tight ones
+/// alone (docs/adaptive.md).
 const EARLY_DECISION: u32 = 8;
 const EARLY_SHARE: f32 = 0.5;
 

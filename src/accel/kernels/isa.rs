@@ -4,7 +4,7 @@
 //! CPU: its SIMD is SSE2. Where the CPU has AVX2 ([`Isa::detect`]), the closest-hit and any-hit
 //! loops of an eight-wide tree ([`crate::accel::Bvh8`]) run in a copy compiled for it
 //! (`accel/wide.rs`), which tests a node's eight boxes in one AVX register instead of two SSE
-//! ones ([`super::boxes8`]). The four-wide tree keeps the baseline: its loops measured no faster in
+//! ones ([`super::boxes8`]). The four-wide tree keeps the baseline, as its loops gain nothing from
 //! the AVX2 copy (`docs/performance.md`), though [`crate::accel::Accel::with_isa`] can ask for it.
 //!
 //! Either way a query does the same IEEE `f32` operations on the same values in the same order
@@ -58,8 +58,7 @@ impl Isa {
 ///
 /// Each query passes a closure of its own, called here only. A helper that took one closure and
 /// called it either here or on the baseline path leaves it out of line, compiled for the
-/// baseline, and this wrapper shrinks to a jump to it: the AVX2 copy is lost (seen in the
-/// symbol sizes).
+/// baseline, and this wrapper shrinks to a jump to it: the AVX2 copy is lost.
 ///
 /// # Safety
 /// Only where the CPU has AVX2, as an [`Isa::detect`] value that says AVX2 shows.

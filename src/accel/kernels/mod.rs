@@ -3,11 +3,11 @@
 //! of an area light), and eight boxes against one ray in one AVX register ([`boxes8`], for the
 //! eight-wide tree where the CPU has AVX2: [`Isa`]).
 //!
-//! Each kernel has a scalar twin in [`crate::geometry`] ([`crate::geometry::Shape::intersect_prepared`])
-//! and gives, lane for lane, the bits that twin gives: every step is an IEEE `f32` operation in
-//! the twin's order (Rust never fuses them), and `min`/`max`, which differ from `f32::min`/`f32::max`
-//! only for NaN, are reached only by values that cannot be NaN or are meant to ignore NaN as the
-//! twin does. Whatever a kernel cannot settle that way it hands back to the twin
+//! Each kernel has a scalar twin in [`crate::geometry`]
+//! ([`crate::geometry::Shape::intersect_prepared`]) and gives, lane for lane, the bits that twin
+//! gives: every step is an IEEE `f32` operation in the twin's order (Rust never fuses them), and
+//! `min`/`max`, which differ from `f32::min`/`f32::max` only for NaN, are reached only by values
+//! that cannot be NaN or are meant to ignore NaN as the twin does. Whatever a kernel cannot settle that way it hands back to the twin
 //! ([`Hits4::scalar`]). Each kernel's tests compare it with its twin bit for bit on adversarial
 //! rays, so the BVHs built on them keep the contract of [`crate::accel`]. The twin of the box
 //! kernel [`boxes8`] is the four-lane node test of the wide trees, which the slab test of

@@ -53,8 +53,8 @@ impl Triangle4 {
         mask(self.p[0][0].is_nan_mask()) ^ 0b1111
     }
 
-    /// Every lane's [`Shape::intersect_prepared`](crate::geometry::Shape::intersect_prepared) with bound
-    /// `t_max`, but for the lanes returned in [`Hits4::scalar`].
+    /// Every lane's [`Shape::intersect_prepared`](crate::geometry::Shape::intersect_prepared)
+    /// with bound `t_max`, but for the lanes returned in [`Hits4::scalar`].
     #[inline(always)]
     pub fn intersect(&self, r: &Ray4, t_max: f32) -> Hits4 {
         intersect_rows(&self.p, r, t_max)
@@ -62,8 +62,7 @@ impl Triangle4 {
 }
 
 /// [`Triangle4::intersect`] of the block a leaf stored with [`Triangle4::rows`], read where it
-/// lies: a leaf's block is not copied out first (a 144-byte `memcpy` a block, 2% of the glass
-/// peer scene's instructions).
+/// lies, so that a leaf's block is not copied out first.
 #[inline(always)]
 pub fn intersect_rows(p: &Rows, r: &Ray4, t_max: f32) -> Hits4 {
     if !r.shear_ok {

@@ -190,8 +190,8 @@ impl Whitted<'_> {
     /// shadow rays leave from, the primitives they may meet. `false` if the render was cancelled
     /// on the way (then `color` holds the samples before).
     ///
-    /// Kept out of line: inlined into [`Whitted::shade`], its lane set-up was hoisted to every
-    /// shading point, point lights' included (about 130 instructions each).
+    /// Kept out of line so that its lane set-up is not hoisted into every shading point of
+    /// [`Whitted::shade`], point lights' included.
     #[allow(clippy::too_many_arguments)]
     #[inline(never)]
     pub(super) fn quad_light_lanes(
