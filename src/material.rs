@@ -75,7 +75,7 @@ impl Default for Material {
 const MAX_WHOLE_EXPONENT: f32 = 4096.0;
 
 /// The Blinn-Phong highlight `cos^exponent` for `cos ∈ [0, 1]`. A whole exponent (every bundled
-/// and corpus scene's) is raised by square-and-multiply, several times faster than `powf`; its
+/// and corpus scene's) is raised by square-and-multiply, which is cheaper than `powf`; its
 /// relative error is at most `2·exponent` units of 2⁻²⁴ (each squaring doubles the error carried
 /// in), below 5·10⁻⁴ of the value up to the largest such exponent: under a quarter of an 8-bit
 /// step (1/1020) for highlights up to 1 (the tests in this module check the bound).

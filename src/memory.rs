@@ -3,9 +3,8 @@
 //! rather than ending the process when an allocation fails.
 
 /// Bytes a triangle of a mesh file takes at the peak of loading and tracing it: the reader's
-/// index buffer, the mesh's own, the tree with its leaf blocks and the build's scratch. Measured
-/// as the growth of the process's peak mapped memory (`VmPeak`) from a 1- to a 4-million-triangle
-/// mesh (187 bytes a triangle; 154 resident), rounded up.
+/// index buffer, the mesh's own, the tree with its leaf blocks and the build's scratch. An upper
+/// estimate: the measured growth of peak mapped memory per triangle, rounded up.
 pub const BYTES_PER_TRIANGLE: u64 = 200;
 
 /// Bytes a vertex of a mesh file takes at that peak: the reader's and the mesh's positions, and

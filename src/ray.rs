@@ -120,7 +120,7 @@ fn surface_offset(error: Vec3, n: Vec3) -> Vec3 {
 /// `po` (a point moved by `offset`) rounded one step further in each component `offset` moves:
 /// [`rounded_away_scalar`]'s bits, in SIMD lanes and without a branch where the CPU has SSE2.
 /// The offset points along the surface normal, whose signs change from one hit to the next, so
-/// the scalar form's per-component branches are mispredicted about once a hit.
+/// the scalar form's per-component branches predict poorly.
 #[inline]
 fn rounded_away(po: Vec3, offset: Vec3) -> Vec3 {
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
@@ -249,12 +249,12 @@ impl SpawnPoints {
     /// `normalize_or_zero(v) · normal` for `v = target − point`.
     ///
     /// Where `v · normal` is far from zero against its rounding, that sign is the sign of `v ·
-    /// normal` itself, and the normalisation (a square root and a division) is not needed. With
+    /// normal` itself, and the normalisation (a square root and a division) is skipped. With
     /// `S = Σ|vᵢ·nᵢ|`, the computed `v · n` is within γ(3)·S of the exact one, and the computed
     /// `w · n` of the normalised `w` within γ(4)·S·(1/|v|) of `(1/|v|)·(v · n)` (each `wᵢ`
     /// rounds once more): beyond γ(8)·S both have the exact product's sign. The bounds on `|v|`
-    /// and `S` keep every product and `1/|v|` far from underflow and overflow, where those bounds
-    /// hold; anything else (and NaN) takes the normalisation, as before.
+    /// and `S` keep every product and `1/|v|` far from underflow and overflow; outside them (and
+    /// for NaN) the side comes from the normalised direction.
     #[inline]
     pub fn side_to(&self, target: Vec3) -> Side {
         const SMALLEST: f32 = 1.0 / (1u64 << 60) as f32;

@@ -346,7 +346,7 @@ mod tests {
         assert!(close(m, mean), "{m}");
     }
 
-    /// The reduction to `[0, 1)` and the wrap by remainders that [`wrap_axis`] replaced.
+    /// The reference wrap for [`wrap_axis`]: reduction to `[0, 1)`, then remainders.
     fn wrap_axis_by_remainders(t: f32, n: u32) -> (u32, u32, f32) {
         let t = f64::from(t);
         let frac = t - floor_f64(t);

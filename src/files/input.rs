@@ -88,7 +88,7 @@ fn open_nonblocking(path: &Path) -> io::Result<File> {
     File::open(path)
 }
 
-/// The size of a regular file at `path`, checked against `limit`.
+/// The size of the open regular file `file`, checked against `limit`.
 pub fn checked_size(file: &File, limit: SizeLimit) -> io::Result<u64> {
     let size = file.metadata()?.len();
     if size > limit.bytes {

@@ -19,6 +19,7 @@ pub enum MeshUv {
     Strip,
 }
 
+/// A triangle mesh: vertex buffers shared by its faces, which are triples of vertex indices.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Mesh {
     pub positions: Vec<Vec3>,

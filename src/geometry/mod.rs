@@ -58,20 +58,13 @@ impl Shape {
     /// The closest intersection with `0 < t < t_max` for a ray prepared once per traversal (what
     /// the accelerators call).
     ///
-    /// For a bounded shape, the shape's own test is followed by the accelerators' robust slab test on the shape's
-    /// bounds ([`crate::accel::aabb::slab`]): a hit is kept only if the ray passes the box, and
-    /// its `t` is raised to the box's entry distance if rounding left it below. Every box
-    /// containing the shape then passes the slab test for any bound `≥ t` (the computed entry and
-    /// exit distances are monotone in the box), so a BVH that culls boxes against the best `t`
-    /// so far can never skip a primitive that testing every primitive would report: the
-    /// accelerators agree bit for bit. The adjustment only acts where the shape's test rounded
-    /// its hit outside its own bounds (grazing rays, hits on a flat box's face), by a few ulps.
-    ///
-    /// The result depends on `t_max` only through the final `t < t_max`, so a hit found under one
-    /// bound is found, with the same bits, under any larger bound.
-    ///
-    /// An infinite plane has no box to clip to; it is never in a tree, so its own test is the
-    /// answer (and it too depends on `t_max` only through the final `t < t_max`).
+    /// A bounded shape's hit is kept only if the ray passes the robust slab test on the shape's
+    /// bounds ([`crate::accel::aabb::slab`]), its `t` raised to the box's entry distance where
+    /// rounding left it below (by a few ulps: grazing rays, hits on a flat box's face). As the
+    /// computed entry and exit distances are monotone in the box, every box holding the shape then
+    /// passes for any bound `≥ t`, so a BVH culling boxes against the best `t` so far reports what
+    /// testing every primitive reports, bit for bit. The result depends on `t_max` only through
+    /// the final `t < t_max`. An infinite plane is never in a tree: its own test is the answer.
     #[inline(always)]
     pub fn intersect_prepared(&self, r: &PreparedRay, t_max: f32) -> Option<Candidate> {
         let c = match self {

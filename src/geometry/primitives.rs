@@ -2,15 +2,14 @@
 //! [`Primitive`] records, and the triangles of large meshes kept as runs over the mesh's faces,
 //! made from the mesh when asked for. A triangle record copies its three corners next to its
 //! mesh, face and material (52 bytes); a run costs a few bytes for the whole mesh, so a mesh of a
-//! million faces no longer needs 52 MB beside its vertex buffers and the accelerator.
+//! million faces does not need 52 MB beside its vertex buffers and the accelerator.
 //!
 //! Numbers follow the file: a shape's primitives are numbered after those of the shapes before
 //! it, whichever way they are stored, so ties broken by number (the accelerators' and the
 //! emitters') do not depend on the storage. Meshes of at most [`RECORD_MESH_MAX_FACES`] faces
-//! (quads, boxes, single triangles, models of up to tens of thousands of faces) keep their
-//! records: gathering an area light's beam candidates and shading a hit read a record without a
-//! lookup (`scenes/demo.json`, whose two meshes have about 5,000 faces each, renders with 9% more
-//! instructions with them stored as runs), and such records cost little memory.
+//! (quads, boxes, models of up to tens of thousands of faces) keep their records: they cost little
+//! memory, and gathering an area light's beam candidates and shading a hit read a record without
+//! a lookup.
 
 use std::borrow::Cow;
 use std::ops::Range;
@@ -349,8 +348,7 @@ mod tests {
         }
     }
 
-    /// What the loader stored before runs: a record per primitive, triangles with their
-    /// corners copied.
+    /// The reference storage: a record per primitive, triangles with their corners copied.
     fn records_of(parts: &[Result<Primitive, (Mesh, u32)>]) -> Vec<Primitive> {
         let mut out = Vec::new();
         let mut meshes = 0;
