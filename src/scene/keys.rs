@@ -20,16 +20,9 @@ use std::collections::HashMap;
 use super::json::{same_key, work_count_add, Node};
 
 /// Keys read nowhere and worth no warning, compared ignoring case; `parent.key` names a key only
-/// in an object that is the value of `parent` (or an element of it):
-/// - labels and comments: `name`, `id`, `comment`, `comments`, `description`, `note`, `notes`,
-///   `title`;
-/// - accelerator switches (`--accel` chooses here): `bvh`, `use_bvh`, `usebvh`, `accelerator`;
-/// - the output image (given on the command line): `output`;
-/// - a label naming the model a shape was cut from, on shapes that are not meshes (a mesh's
-///   `model` is its file): `shapes.model`;
-/// - a texture's size, read from the image itself: `tWidth`, `tHeight`, and `width`/`height` in
-///   a `texture` object or a `textures` library entry.
+/// in an object that is the value of `parent` (or an element of it).
 pub const HARMLESS: &[&str] = &[
+    // Labels and comments.
     "name",
     "id",
     "comment",
@@ -38,12 +31,16 @@ pub const HARMLESS: &[&str] = &[
     "note",
     "notes",
     "title",
+    // Accelerator switches (`--accel` chooses here).
     "bvh",
     "use_bvh",
     "usebvh",
     "accelerator",
+    // The output image (given on the command line).
     "output",
+    // The model a shape was cut from, on shapes that are not meshes (a mesh's `model` is its file).
     "shapes.model",
+    // A texture's size, read from the image itself.
     "twidth",
     "theight",
     "texture.width",

@@ -28,7 +28,7 @@ use std::ops::Range;
 use super::error::{Location, SceneError, Warning};
 use super::json::Node;
 use super::load::spellings::{type_of, SHAPE_TYPES};
-use super::load::{positive, required};
+use super::load::{required, required_positive};
 use crate::geometry::{Primitive, Primitives, Shape};
 use crate::light::{cumulative_areas, Intensity, Light};
 use crate::math::Vec3;
@@ -41,7 +41,7 @@ const LISTED_IDS: usize = 20;
 /// (`center`, `centre` or `position`) and a radius > 0.
 pub(super) fn sphere(shape: &Node) -> Result<(Vec3, f32), SceneError> {
     let center = required(shape, &["center", "centre", "position"])?.vec3()?;
-    let radius = positive(shape, "radius")?;
+    let radius = required_positive(shape, "radius")?;
     Ok((center, radius))
 }
 
@@ -124,7 +124,7 @@ impl Emitters {
     }
 
     /// Records the shape `s`, whose primitives are `primitives`, if it has a string `id`.
-    pub(super) fn shape(&mut self, s: &Node, primitives: Range<usize>) {
+    pub(super) fn note_shape(&mut self, s: &Node, primitives: Range<usize>) {
         let Some(id) = s.get("id").and_then(|n| n.str().ok().map(str::to_string)) else {
             return;
         };
@@ -138,11 +138,8 @@ impl Emitters {
     }
 
     /// Records that the shape `s`, whose primitives are `primitives`, has a material emitting
-    /// `radiance`: once resolved it is an area light of that radiance for the path tracer
-    /// (intensity `radiance · A / π` for its area `A`, falling off as `1/d²`, so that the
-    /// conventions of `integrator::emitters` give back `radiance`; Whitted shading sees a light
-    /// of that intensity and fall-off, and the shape's own emission).
-    pub(super) fn glowing(&mut self, s: &Node, primitives: Range<usize>, radiance: Vec3) {
+    /// `radiance`: an area light once resolved.
+    pub(super) fn note_glowing(&mut self, s: &Node, primitives: Range<usize>, radiance: Vec3) {
         let kind = shape_kind(s);
         self.glowing.push(Glowing {
             kind,
@@ -152,9 +149,10 @@ impl Emitters {
         });
     }
 
-    /// Replaces every waiting light's placeholder in `lights` by the light its shape makes.
-    /// A `shapeid` naming no shape, or a shape that cannot emit, is an error; one naming a shape
-    /// that was skipped (unknown `type`) skips the light, with a warning.
+    /// Replaces every waiting light's placeholder in `lights` by the light its shape makes, and
+    /// adds a light for each shape whose material emits. A `shapeid` naming no shape, or a shape
+    /// that cannot emit, is an error; one naming a shape that was skipped (unknown `type`) skips
+    /// the light, with a warning.
     pub(super) fn resolve(
         self,
         lights: &mut Vec<Light>,
@@ -169,80 +167,15 @@ impl Emitters {
         }
         let mut skipped = HashSet::new();
         for w in &self.wanted {
-            let Some(&(first, count)) = by_id.get(w.id.as_str()) else {
-                return Err(invalid(&w.at, self.no_such_id(&w.id)));
-            };
-            let shape = &self.shapes[first];
-            if count > 1 {
-                warnings.push(Warning {
-                    location: w.at.clone(),
-                    message: format!(
-                        "several shapes have the id '{}'; the first ({}) is the light",
-                        w.id, shape.at.path
-                    ),
-                });
+            match self.wanted_light(w, &by_id, primitives, warnings)? {
+                Some(light) => lights[w.light] = light,
+                None => {
+                    skipped.insert(w.light);
+                }
             }
-            let prims = &primitives.range(shape.primitives.clone())[..];
-            if prims.is_empty() {
-                warnings.push(Warning {
-                    location: w.at.clone(),
-                    message: format!(
-                        "the shape '{}' ({}) was skipped, so this light is skipped too",
-                        w.id, shape.at.path
-                    ),
-                });
-                skipped.insert(w.light);
-                continue;
-            }
-            let light = surface_light(
-                &shape.kind,
-                prims,
-                shape.primitives.clone(),
-                |_| w.intensity,
-                w.samples,
-                w.method,
-            );
-            let Some(light) = light else {
-                let kind = if matches!(
-                    prims,
-                    [Primitive {
-                        shape: Shape::Plane(_),
-                        ..
-                    }]
-                ) {
-                    "an infinite plane, which has no finite area to sample".to_string()
-                } else {
-                    format!("a '{}'", shape.kind)
-                };
-                return Err(invalid(
-                    &w.at,
-                    format!(
-                        "the shape '{}' ({}) is {kind}; only a sphere, a triangle or a quad \
-                         (a 'plane' with corners) can be an area light",
-                        w.id, shape.at.path
-                    ),
-                ));
-            };
-            lights[w.light] = light;
         }
         for g in &self.glowing {
-            let prims = &primitives.range(g.primitives.clone())[..];
-            let light = surface_light(
-                &g.kind,
-                prims,
-                g.primitives.clone(),
-                |area| {
-                    let i = g.radiance * (area / std::f32::consts::PI);
-                    Intensity {
-                        diffuse: i,
-                        specular: i,
-                        falloff: crate::light::Falloff::InverseSquare { scale: 1.0 },
-                    }
-                },
-                1,
-                Method::Sobol,
-            );
-            match light {
+            match glowing_light(g, primitives) {
                 Some(l) => lights.push(l),
                 None => warnings.push(Warning {
                     location: g.at.clone(),
@@ -262,6 +195,53 @@ impl Emitters {
             });
         }
         Ok(())
+    }
+
+    /// The light of the shape `w` waits for (found through `by_id`, each id's first shape and
+    /// count), or `None` when that shape was skipped.
+    fn wanted_light(
+        &self,
+        w: &Wanted,
+        by_id: &HashMap<&str, (usize, usize)>,
+        primitives: &Primitives,
+        warnings: &mut Vec<Warning>,
+    ) -> Result<Option<Light>, SceneError> {
+        let Some(&(first, count)) = by_id.get(w.id.as_str()) else {
+            return Err(invalid(&w.at, self.no_such_id(&w.id)));
+        };
+        let shape = &self.shapes[first];
+        if count > 1 {
+            warnings.push(Warning {
+                location: w.at.clone(),
+                message: format!(
+                    "several shapes have the id '{}'; the first ({}) is the light",
+                    w.id, shape.at.path
+                ),
+            });
+        }
+        let prims = &primitives.range(shape.primitives.clone())[..];
+        if prims.is_empty() {
+            warnings.push(Warning {
+                location: w.at.clone(),
+                message: format!(
+                    "the shape '{}' ({}) was skipped, so this light is skipped too",
+                    w.id, shape.at.path
+                ),
+            });
+            return Ok(None);
+        }
+        let light = surface_light(
+            &shape.kind,
+            prims,
+            shape.primitives.clone(),
+            |_| w.intensity,
+            w.samples,
+            w.method,
+        );
+        match light {
+            Some(light) => Ok(Some(light)),
+            None => Err(not_an_emitter(w, shape, prims)),
+        }
     }
 
     /// The message for a `shapeid` that names no shape: the ids there are.
@@ -291,6 +271,51 @@ impl Emitters {
         };
         format!("no shape has the id '{id}' ({listed})")
     }
+}
+
+/// The light a shape whose material emits makes, or `None` if its shape cannot be one: intensity
+/// `radiance · A / π` for its area `A`, falling off as `1/d²`, which `integrator::emitters` turns
+/// back into `radiance` (Whitted shading sees that light and the shape's own emission).
+fn glowing_light(g: &Glowing, primitives: &Primitives) -> Option<Light> {
+    let prims = &primitives.range(g.primitives.clone())[..];
+    surface_light(
+        &g.kind,
+        prims,
+        g.primitives.clone(),
+        |area| {
+            let i = g.radiance * (area / std::f32::consts::PI);
+            Intensity {
+                diffuse: i,
+                specular: i,
+                falloff: crate::light::Falloff::InverseSquare { scale: 1.0 },
+            }
+        },
+        1,
+        Method::Sobol,
+    )
+}
+
+/// The error for a `shapeid` that names `shape`, whose primitives `prims` cannot be a light.
+fn not_an_emitter(w: &Wanted, shape: &Named, prims: &[Primitive]) -> SceneError {
+    let kind = if matches!(
+        prims,
+        [Primitive {
+            shape: Shape::Plane(_),
+            ..
+        }]
+    ) {
+        "an infinite plane, which has no finite area to sample".to_string()
+    } else {
+        format!("a '{}'", shape.kind)
+    };
+    invalid(
+        &w.at,
+        format!(
+            "the shape '{}' ({}) is {kind}; only a sphere, a triangle or a quad \
+             (a 'plane' with corners) can be an area light",
+            w.id, shape.at.path
+        ),
+    )
 }
 
 /// The area light whose surface is the primitives `prims` (numbered `range`) of a shape of type
@@ -342,6 +367,7 @@ fn surface_light(
     }
 }
 
+/// An error at `at`.
 fn invalid(at: &Location, message: String) -> SceneError {
     SceneError::Invalid {
         location: at.clone(),

@@ -46,6 +46,7 @@ pub enum Variant {
     Cgr,
 }
 
+/// A loaded scene: what the renderer needs, and what the loader warned about.
 #[derive(Debug, Clone)]
 pub struct Scene {
     pub variant: Variant,

@@ -83,6 +83,7 @@ pub fn read(s: &Node, kind: &str) -> Result<Rectangle, SceneError> {
     })
 }
 
+/// The member `key` of `s`, which must be present.
 fn required<'a, 't>(s: &Node<'a, 't>, key: &str) -> Result<Node<'a, 't>, SceneError> {
     s.get(key)
         .ok_or_else(|| s.error(format!("missing required key '{key}'")))

@@ -37,10 +37,9 @@ const CHECKPOINT_BYTES: usize = 256;
 /// costs less than building an index.
 const LINEAR_LOOKUP_MAX: usize = 16;
 
-/// Most distinct names recorded as asked of one object. The loader asks an object for at most a
-/// few dozen names, except where it asks for one key per element (`v0`, `v1`, … of a counted
-/// mesh); the cap keeps each lookup's record, and each suggestion for an unread key, of bounded
-/// cost there. The names asked first (the fixed keys of the object's kind) are the ones kept.
+/// Most distinct names recorded as asked of one object: it bounds the cost of each lookup's record
+/// and each unread-key suggestion where the loader asks one key per element (`v0`, `v1`, … of a
+/// counted mesh). The names asked first (the fixed keys of the object's kind) are kept.
 const MOST_NAMES_ASKED: usize = 128;
 
 thread_local! {
@@ -436,8 +435,8 @@ impl<'a, 't> Node<'a, 't> {
     }
 
     fn child(&self, value: &'a Value<'t>, segment: String) -> Node<'a, 't> {
-        // Built by hand: this runs for every value the loader looks at, and the formatting
-        // machinery costs several times the copy.
+        // Built by hand rather than with `format!`: this runs for every value the loader
+        // looks at.
         let mut path = String::with_capacity(self.path.len() + 1 + segment.len());
         path.push_str(&self.path);
         if !(self.path.is_empty() || segment.starts_with('[')) {
@@ -569,13 +568,10 @@ impl<'a, 't> Node<'a, 't> {
         }
     }
 
-    /// The members that no lookup returned, in file order, of every object under this value
-    /// that some lookup looked into ([`Node::peek`] does not count). Objects never looked into
-    /// are not searched, nor is anything inside an unread member.
-    ///
-    /// The walk keeps each value's place as a link to its parent and spells out the paths of the
-    /// unread members only, so its cost is linear in the size of the document however deeply it
-    /// nests.
+    /// The members no lookup returned ([`Node::peek`] does not count), in file order, of every
+    /// object under this value that some lookup looked into; nothing inside an unread member is
+    /// searched. Only the unread members' paths are spelled out (each place links to its
+    /// parent), so the walk is linear in the document's size however deeply it nests.
     pub fn unread_members(&self) -> Vec<Unread<'a, 't>> {
         #[derive(Clone, Copy)]
         enum Segment<'a> {

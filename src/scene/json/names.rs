@@ -6,14 +6,10 @@ use std::hash::{BuildHasher, Hasher, RandomState};
 
 use super::count_work;
 
-/// Names mapped to their first position in a list, for lookups that must not scan the list.
-///
-/// The index keeps only a hash of each name (with the standard library's per-process random
-/// keys, so no file can be written to collide) and the first position that had it; a lookup
-/// checks the name found there, and only a collision falls back to reading the list in order.
-///
-/// An index of keys ([`NameIndex::keys`]) matches names as [`same_key`] does; other indexes
-/// match them exactly.
+/// Names mapped to their first position in a list, for lookups that must not scan it. Only a
+/// hash of each name is kept, randomly keyed per process so no file can force collisions; a
+/// collision falls back to reading the list in order. An index of keys ([`NameIndex::keys`])
+/// matches names as [`same_key`] does, other indexes exactly.
 #[derive(Default)]
 pub struct NameIndex {
     hasher: RandomState,

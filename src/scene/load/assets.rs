@@ -10,13 +10,10 @@ use crate::scene::SceneError;
 
 impl Loader<'_> {
     /// The first existing file among the scene's folder, the asset folders and the working
-    /// directory joined with `rel`, recorded as one of the scene's inputs. A path that exists but
-    /// is not a regular file (a folder, a FIFO, a device) is an error, never opened.
-    ///
-    /// An absolute path from another machine (`C:\Users\…\Textures\grass.ppm`) that is not
-    /// here is looked for by its trailing parts under the same folders, longest first
-    /// (`Textures/grass.ppm`, then `grass.ppm`): the project's folders moved with its files.
-    pub(super) fn resolve(&mut self, node: &Node, rel: &str) -> Result<PathBuf, SceneError> {
+    /// directory joined with `rel`, recorded as one of the scene's inputs; one that is not a
+    /// regular file is an error, never opened. An absolute path from another machine
+    /// (`C:\Users\…\Textures\grass.ppm`) is looked for by its trailing parts, longest first.
+    pub(super) fn find_asset(&mut self, node: &Node, rel: &str) -> Result<PathBuf, SceneError> {
         let rel_path = PathBuf::from(rel.replace('\\', "/"));
         let mut tried = Vec::new();
         let mut bases = vec![self.base.clone()];

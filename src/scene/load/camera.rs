@@ -17,13 +17,47 @@ impl Loader<'_> {
         if !cam.is_object() {
             return Err(cam.error(format!("expected an object, found {}", cam.kind())));
         }
+        let thin_lens = self.is_thin_lens(root, cam)?;
+        let (width, height) = self.image_size(root, cam)?;
+        let fov_y = fov_y(cam, width as f32 / height as f32)?;
+        let (position, dir, up, dir_node, looks_at_point) = self.pose(cam)?;
+        let exposure = exposure(root, cam)?;
+
+        // Without a focus distance, a lens focuses on the point looked at, if any.
+        let target_distance = looks_at_point.then(|| dir.length());
+        let lens = self.lens(root, cam, thin_lens, target_distance)?;
+        // A camera with a lens is a thin lens whatever its type says.
+        let thin_lens = lens.is_some();
+
+        let handedness = if is_cgr(root, cam) {
+            Handedness::UpCrossForward
+        } else {
+            Handedness::ForwardCrossUp
+        };
+        let camera = Camera::new(position, dir, up, handedness, width, height, fov_y, lens)
+            .ok_or_else(|| dir_node.error("the viewing direction is zero"))?;
+
+        // A thin-lens camera's rays per pixel; a pinhole camera's count is ignored, as the files'
+        // renderers do (one ray through each pixel).
+        let lens_samples = if thin_lens {
+            cam.get_any(camera::LENS_SAMPLES)
+        } else {
+            cam.mark_read(camera::LENS_SAMPLES);
+            None
+        };
+        Ok((camera, exposure, lens_samples))
+    }
+
+    /// Whether the camera's `type` (or a top-level `use_dof`) makes it a thin lens; an unknown
+    /// type is a pinhole, with a warning.
+    fn is_thin_lens(&mut self, root: &Node, cam: &Node) -> Result<bool, SceneError> {
         // A top-level `use_dof` (with `aperture` and `focus_distance` beside it) turns the
         // camera into a thin lens, as the files of one CGR renderer write it.
         let use_dof = match root.get("use_dof") {
             Some(n) => n.bool()?,
             None => false,
         };
-        let thin_lens = match cam.get("type") {
+        Ok(match cam.get("type") {
             _ if use_dof => true,
             None => false,
             Some(t) => match type_of(CAMERA_TYPES, t.str()?) {
@@ -42,7 +76,12 @@ impl Loader<'_> {
                     false
                 }
             },
-        };
+        })
+    }
+
+    /// The image's width and height: the file's (from the camera or a `settings` object),
+    /// overridden by the options, checked against the pixel limit.
+    fn image_size(&self, root: &Node, cam: &Node) -> Result<(u32, u32), SceneError> {
         let settings = root.get("settings").filter(|n| n.is_object());
         let size_holder = match &settings {
             Some(st) if !cam.has_any(&["width"]) && st.has_any(&["width"]) => st.clone(),
@@ -76,63 +115,7 @@ impl Loader<'_> {
                 self.options.max_pixels
             )));
         }
-        let aspect = width as f32 / height as f32;
-        let fov_y = if let Some(n) = cam.get_any(camera::FOV) {
-            let f = n.f32()?;
-            if !(f > 0.0 && f < 180.0) {
-                return Err(n.error(format!("fov must be between 0 and 180 degrees, found {f}")));
-            }
-            f
-        } else if let Some(n) = cam.get_any(camera::HFOV) {
-            let f = n.f32()?;
-            if !(f > 0.0 && f < 180.0) {
-                return Err(n.error(format!("hfov must be between 0 and 180 degrees, found {f}")));
-            }
-            2.0 * ((0.5 * f.to_radians()).tan() / aspect).atan().to_degrees()
-        } else {
-            return Err(required(cam, &["fov", "hfov"])
-                .err()
-                .unwrap_or_else(|| cam.error("missing fov")));
-        };
-
-        let (position, dir, up, dir_node, looks_at_point) = self.pose(cam)?;
-        let exposure = match cam
-            .get_any(camera::EXPOSURE)
-            .or_else(|| root.get_any(camera::EXPOSURE))
-        {
-            Some(n) => {
-                let e = n.f32()?;
-                if e < 0.0 {
-                    return Err(n.error(format!("exposure must be ≥ 0, found {e}")));
-                }
-                e
-            }
-            None => 1.0,
-        };
-
-        // Without a focus distance, a lens focuses on the point looked at, if any.
-        let target_distance = looks_at_point.then(|| dir.length());
-        let lens = self.lens(root, cam, thin_lens, target_distance)?;
-        // A camera with a lens is a thin lens whatever its type says.
-        let thin_lens = lens.is_some();
-
-        let handedness = if is_cgr(root, cam) {
-            Handedness::UpCrossForward
-        } else {
-            Handedness::ForwardCrossUp
-        };
-        let camera = Camera::new(position, dir, up, handedness, width, height, fov_y, lens)
-            .ok_or_else(|| dir_node.error("the viewing direction is zero"))?;
-
-        // A thin-lens camera's rays per pixel; a pinhole camera's count is ignored, as the files'
-        // renderers do (one ray through each pixel).
-        let lens_samples = if thin_lens {
-            cam.get_any(camera::LENS_SAMPLES)
-        } else {
-            cam.mark_read(camera::LENS_SAMPLES);
-            None
-        };
-        Ok((camera, exposure, lens_samples))
+        Ok((width, height))
     }
 
     /// The camera's position, viewing direction, up hint, the node that gave the direction, and
@@ -319,4 +302,43 @@ fn camera_to_world(m: &Node) -> Result<(Vec3, Vec3, Vec3), SceneError> {
         ));
     }
     Ok((position, -back, up))
+}
+
+/// The vertical field of view in degrees: `fov`, or `hfov` converted for the image's `aspect`
+/// ratio (width / height).
+fn fov_y(cam: &Node, aspect: f32) -> Result<f32, SceneError> {
+    if let Some(n) = cam.get_any(camera::FOV) {
+        let f = n.f32()?;
+        if !(f > 0.0 && f < 180.0) {
+            return Err(n.error(format!("fov must be between 0 and 180 degrees, found {f}")));
+        }
+        Ok(f)
+    } else if let Some(n) = cam.get_any(camera::HFOV) {
+        let f = n.f32()?;
+        if !(f > 0.0 && f < 180.0) {
+            return Err(n.error(format!("hfov must be between 0 and 180 degrees, found {f}")));
+        }
+        Ok(2.0 * ((0.5 * f.to_radians()).tan() / aspect).atan().to_degrees())
+    } else {
+        Err(required(cam, &["fov", "hfov"])
+            .err()
+            .unwrap_or_else(|| cam.error("missing fov")))
+    }
+}
+
+/// The camera's `exposure` (or a top-level one), 1 when neither gives it.
+fn exposure(root: &Node, cam: &Node) -> Result<f32, SceneError> {
+    match cam
+        .get_any(camera::EXPOSURE)
+        .or_else(|| root.get_any(camera::EXPOSURE))
+    {
+        Some(n) => {
+            let e = n.f32()?;
+            if e < 0.0 {
+                return Err(n.error(format!("exposure must be ≥ 0, found {e}")));
+            }
+            Ok(e)
+        }
+        None => Ok(1.0),
+    }
 }

@@ -2,7 +2,7 @@
 
 use super::shape::{quad_edges, right_angle_corner};
 use super::spellings::{light, type_names, type_of, LIGHT_TYPES, SHAPE_TYPES};
-use super::{nearest, non_negative_color, opt_f32, positive, required, Loader};
+use super::{nearest, non_negative_color, opt_f32, required, required_positive, Loader};
 use crate::light::{Falloff, Intensity, Light};
 use crate::math::Vec3;
 use crate::sampling::Method;
@@ -15,6 +15,8 @@ use crate::scene::{RenderMode, SceneError, Variant};
 const DISC_SIDES: usize = 64;
 
 impl Loader<'_> {
+    /// Reads the light `l` into the scene's lights (an ambient one into the ambient term); a
+    /// light of unknown `type` is skipped with a warning.
     pub(super) fn light(&mut self, l: &Node) -> Result<(), SceneError> {
         if !l.is_object() {
             return Err(l.error(format!("a light is an object, found {}", l.kind())));
@@ -63,7 +65,7 @@ impl Loader<'_> {
     /// A ball of light: a centre and a radius.
     fn sphere_light(&mut self, l: &Node, intensity: Intensity) -> Result<(), SceneError> {
         let center = required(l, light::POSITION)?.vec3()?;
-        let radius = positive(l, "radius")?;
+        let radius = required_positive(l, "radius")?;
         self.push_sphere_light(l, center, radius, intensity)
     }
 
@@ -91,7 +93,7 @@ impl Loader<'_> {
     /// light), sampled as a fan of [`DISC_SIDES`] triangles of the disc's own area.
     fn disc_light(&mut self, l: &Node, intensity: Intensity) -> Result<(), SceneError> {
         let center = required(l, light::POSITION)?.vec3()?;
-        let radius = positive(l, "radius")?;
+        let radius = required_positive(l, "radius")?;
         let normal = match l.get_any(light::NORMAL) {
             Some(n) => {
                 let v = n.vec3()?;
@@ -227,53 +229,9 @@ impl Loader<'_> {
     /// An area light: a quad from its corners or edges, or the sphere, quad or triangle of its
     /// `shape`, or the scene shape its `shapeid` names (resolved after the shapes are read).
     pub(super) fn area_light(&mut self, l: &Node, intensity: Intensity) -> Result<(), SceneError> {
-        let corner = |k: &str| l.get(k).map(|n| n.vec3()).transpose();
         let any = |k: &[&str]| l.get_any(k).map(|n| n.vec3()).transpose();
-        let (origin, edge_u, edge_v) = if let (Some(a), Some(b), Some(c)) =
-            (corner("v0")?, corner("v1")?, corner("v2")?)
-        {
-            match corner("v3")? {
-                Some(d) => quad_edges([a, b, c, d]),
-                None => right_angle_corner(a, b, c),
-            }
-        } else if let (Some(a), Some(b), Some(c)) = (corner("c1")?, corner("c2")?, corner("c3")?) {
-            right_angle_corner(a, b, c)
-        } else if let (Some(p), Some(e0), Some(e1)) = (
-            any(light::CORNER)?,
-            any(light::EDGE_1)?,
-            any(light::EDGE_2)?,
-        ) {
-            (p, e0, e1)
-        } else if let (Some(p), Some(u), Some(v)) = (
-            any(light::POSITION)?,
-            any(light::AXIS_U)?,
-            any(light::AXIS_V)?,
-        ) {
-            // Centred on `position`; with `width`/`height` the edges are `u`, `v` scaled to those
-            // lengths, otherwise `u` and `v` are the edges.
-            let w = opt_f32(l, &["width"])?;
-            let h = opt_f32(l, &["height"])?;
-            let eu = match w {
-                Some(w) => u.normalize_or_zero() * w,
-                None => u,
-            };
-            let ev = match h {
-                Some(h) => v.normalize_or_zero() * h,
-                None => v,
-            };
-            (p - 0.5 * eu - 0.5 * ev, eu, ev)
-        } else if let (Some(p), Some(size)) = (any(light::POSITION)?, l.get("size")) {
-            let (sw, sh) = match size.numbers() {
-                Ok(v) if v.len() == 2 => (v[0] as f32, v[1] as f32),
-                _ => {
-                    let s = size.f32()?;
-                    (s, s)
-                }
-            };
-            // A horizontal rectangle (in the x–z plane).
-            let eu = Vec3::X * sw;
-            let ev = Vec3::Z * sh;
-            (p - 0.5 * eu - 0.5 * ev, eu, ev)
+        let (origin, edge_u, edge_v) = if let Some(quad) = light_quad(l)? {
+            quad
         } else if l.contains_any(light::POSITION) && l.contains_any(light::RADIUS) {
             // A centre and a radius: a ball of light.
             return self.sphere_light(l, intensity);
@@ -401,4 +359,63 @@ impl Loader<'_> {
         }
         Ok((total as u32, method))
     }
+}
+
+/// The parallelogram (origin and two edges) of an area light given by its corners (`v0`..`v3`
+/// or `c1`..`c3`), a corner and two edges, two edges about its centre, or a centre and a `size`;
+/// `None` if it is given in none of these forms.
+fn light_quad(l: &Node) -> Result<Option<(Vec3, Vec3, Vec3)>, SceneError> {
+    let corner = |k: &str| l.get(k).map(|n| n.vec3()).transpose();
+    let any = |k: &[&str]| l.get_any(k).map(|n| n.vec3()).transpose();
+    let quad = if let (Some(a), Some(b), Some(c)) = (corner("v0")?, corner("v1")?, corner("v2")?) {
+        match corner("v3")? {
+            Some(d) => quad_edges([a, b, c, d]),
+            None => right_angle_corner(a, b, c),
+        }
+    } else if let (Some(a), Some(b), Some(c)) = (corner("c1")?, corner("c2")?, corner("c3")?) {
+        right_angle_corner(a, b, c)
+    } else if let (Some(p), Some(e0), Some(e1)) = (
+        any(light::CORNER)?,
+        any(light::EDGE_1)?,
+        any(light::EDGE_2)?,
+    ) {
+        (p, e0, e1)
+    } else if let (Some(p), Some(u), Some(v)) = (
+        any(light::POSITION)?,
+        any(light::AXIS_U)?,
+        any(light::AXIS_V)?,
+    ) {
+        centred_quad(l, p, u, v)?
+    } else if let (Some(p), Some(size)) = (any(light::POSITION)?, l.get("size")) {
+        let (sw, sh) = match size.numbers() {
+            Ok(v) if v.len() == 2 => (v[0] as f32, v[1] as f32),
+            _ => {
+                let s = size.f32()?;
+                (s, s)
+            }
+        };
+        // A horizontal rectangle (in the x–z plane).
+        let eu = Vec3::X * sw;
+        let ev = Vec3::Z * sh;
+        (p - 0.5 * eu - 0.5 * ev, eu, ev)
+    } else {
+        return Ok(None);
+    };
+    Ok(Some(quad))
+}
+
+/// The parallelogram centred on `p` with edges `u`, `v`, or with `width`/`height` given, edges
+/// along `u`, `v` of those lengths.
+fn centred_quad(l: &Node, p: Vec3, u: Vec3, v: Vec3) -> Result<(Vec3, Vec3, Vec3), SceneError> {
+    let w = opt_f32(l, &["width"])?;
+    let h = opt_f32(l, &["height"])?;
+    let eu = match w {
+        Some(w) => u.normalize_or_zero() * w,
+        None => u,
+    };
+    let ev = match h {
+        Some(h) => v.normalize_or_zero() * h,
+        None => v,
+    };
+    Ok((p - 0.5 * eu - 0.5 * ev, eu, ev))
 }

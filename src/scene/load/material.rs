@@ -10,6 +10,7 @@ use crate::scene::json::Node;
 use crate::scene::{RenderMode, SceneError};
 
 impl Loader<'_> {
+    /// Reads the material of shape `s` into the scene's materials and returns its index.
     pub(super) fn material(
         &mut self,
         s: &Node,
@@ -17,153 +18,122 @@ impl Loader<'_> {
         libraries: &mut Libraries,
     ) -> Result<u32, SceneError> {
         let mut m = Material::default();
-        // A shape without a `material` may carry the material's keys itself (as some files do).
-        let mut node = s.get("material").or_else(|| Some(s.clone()));
+        let node = material_node(s, libraries)?;
         // Whether `node` is a material object rather than the shape standing in for one (whose
         // `type` is the shape's).
         let own_material = s.peek("material").is_some();
-        if let Some(named) = node.as_ref().and_then(|n| n.str().ok()) {
-            match libraries.materials.find(named) {
-                Some((_, def)) => node = Some(def.clone()),
-                None => {
-                    let names = libraries.materials.names();
-                    let at = node.unwrap_or_else(|| s.clone());
-                    return Err(at.error(format!(
-                        "no material named '{named}' (the scene defines: {})",
-                        if names.is_empty() {
-                            "none".to_string()
-                        } else {
-                            names.join(", ")
-                        }
-                    )));
-                }
+        self.material_keys(&node, own_material, &mut m)?;
+        self.material_texture(s, &node, mode, libraries, &mut m)?;
+        self.materials.push(m);
+        Ok(self.materials.len() as u32 - 1)
+    }
+
+    /// Reads the material object `n` into `m`: the Blinn-Phong weights and colours, mirror and
+    /// glass, emission, and the physically based `type` if `n` is a material of its own.
+    fn material_keys(
+        &mut self,
+        n: &Node,
+        own_material: bool,
+        m: &mut Material,
+    ) -> Result<(), SceneError> {
+        if !n.is_object() {
+            return Err(n.error(format!("a material is an object, found {}", n.kind())));
+        }
+        phong_keys(n, m)?;
+        self.mirror_weight(n, m)?;
+        let eta_node = transmission(n, m)?;
+        for (name, v) in [
+            ("ka", m.ka),
+            ("kd", m.kd),
+            ("ks", m.ks),
+            ("kr", m.kr),
+            ("kt", m.kt),
+        ] {
+            if v < 0.0 {
+                let at = n.get(name).unwrap_or_else(|| n.clone());
+                return Err(at.error(format!("{name} must be ≥ 0, found {v}")));
             }
         }
-        if let Some(n) = &node {
-            if !n.is_object() {
-                return Err(n.error(format!("a material is an object, found {}", n.kind())));
-            }
-            if let Some(v) = opt_f32(n, &["ka"])? {
-                m.ka = v;
-            }
-            if let Some(v) = opt_f32(n, &["kd"])? {
-                m.kd = v;
-            }
-            if let Some(v) = opt_f32(n, &["ks"])? {
-                m.ks = v;
-            }
-            if let Some(v) = opt_f32(n, material::EXPONENT)? {
-                if v < 0.0 {
-                    return Err(n.error(format!("the specular exponent must be ≥ 0, found {v}")));
-                }
-                m.exponent = v;
-            }
-            if let Some(c) = n.get_any(material::DIFFUSE) {
-                m.diffuse = c.color()?;
-            } else if let Some(c) = n.get("diffuse").filter(|c| c.str().is_err()) {
-                m.diffuse = c.color()?; // `diffuse` as a string is a texture (below)
-            }
-            if let Some(c) = n.get_any(material::SPECULAR) {
-                m.specular = c.color()?;
-            }
-            let reflective = n
-                .get_any(material::IS_REFLECTIVE)
-                .map(|b| b.bool())
-                .transpose()?;
-            let kr_node = n.get_any(material::KR);
-            if let Some(t) = kr_node.as_ref().filter(|k| k.str().is_ok()) {
-                self.warn(
-                    t,
-                    format!(
-                        "a mirror weight from a texture ('{}') is not supported; the material \
-                         has no mirror",
-                        t.str()?
-                    ),
-                );
-            }
-            let kr = kr_node
-                .filter(|k| k.str().is_err())
-                .map(|k| k.f32())
-                .transpose()?;
-            if let Some(v) = kr {
-                m.kr = if reflective == Some(false) { 0.0 } else { v };
-            } else if reflective == Some(true) {
-                m.kr = 1.0;
-            }
-            let refractive = n
-                .get_any(material::IS_REFRACTIVE)
-                .map(|b| b.bool())
-                .transpose()?;
-            if let Some(v) = opt_f32(n, material::KT)? {
-                m.kt = if refractive == Some(false) { 0.0 } else { v };
-            } else if refractive == Some(true) {
-                m.kt = 1.0;
-            }
-            let eta_node = n.get_any(material::ETA);
-            m.eta = match &eta_node {
-                Some(e) => e.f32()?,
-                None => DEFAULT_ETA,
-            };
-            for (name, v) in [
-                ("ka", m.ka),
-                ("kd", m.kd),
-                ("ks", m.ks),
-                ("kr", m.kr),
-                ("kt", m.kt),
-            ] {
-                if v < 0.0 {
-                    let at = n.get(name).unwrap_or_else(|| n.clone());
-                    return Err(at.error(format!("{name} must be ≥ 0, found {v}")));
-                }
-            }
-            Self::emission(n, &mut m)?;
-            // A metal's roughness is its own (see `material_kind`); any other material's blurs
-            // its mirror part.
-            let roughness_read = own_material && self.material_kind(n, &mut m)?;
-            if let Some(r) = n.get("roughness").filter(|_| !roughness_read) {
-                m.mirror_exponent = self.mirror_roughness(&r, m.kr)?;
-            }
-            // Checked once the material's `type` has said whether it transmits.
-            if let Some(e) = eta_node.filter(|_| m.eta <= 0.0 && m.kt > 0.0) {
-                return Err(e.error(format!(
-                    "the index of refraction must be > 0, found {}",
-                    m.eta
-                )));
-            }
+        Self::emission(n, m)?;
+        // A metal's roughness is its own (see `material_kind`); any other material's blurs
+        // its mirror part.
+        let roughness_read = own_material && self.material_kind(n, m)?;
+        if let Some(r) = n.get("roughness").filter(|_| !roughness_read) {
+            m.mirror_exponent = self.mirror_roughness(&r, m.kr)?;
         }
-        node.iter()
-            .chain([s])
-            .for_each(|n| n.mark_read(texture::TEXTURE)); // known in every mode
-        if let Some(n) = &node {
-            n.mark_read(&["diffuse"]);
+        // Checked once the material's `type` has said whether it transmits.
+        if let Some(e) = eta_node.filter(|_| m.eta <= 0.0 && m.kt > 0.0) {
+            return Err(e.error(format!(
+                "the index of refraction must be > 0, found {}",
+                m.eta
+            )));
         }
+        Ok(())
+    }
+
+    /// The mirror weight `kr` (a texture there is warned about and ignored), switched on or off
+    /// by `isReflective`.
+    fn mirror_weight(&mut self, n: &Node, m: &mut Material) -> Result<(), SceneError> {
+        let reflective = n
+            .get_any(material::IS_REFLECTIVE)
+            .map(|b| b.bool())
+            .transpose()?;
+        let kr_node = n.get_any(material::KR);
+        if let Some(t) = kr_node.as_ref().filter(|k| k.str().is_ok()) {
+            self.warn(
+                t,
+                format!(
+                    "a mirror weight from a texture ('{}') is not supported; the material \
+                     has no mirror",
+                    t.str()?
+                ),
+            );
+        }
+        let kr = kr_node
+            .filter(|k| k.str().is_err())
+            .map(|k| k.f32())
+            .transpose()?;
+        if let Some(v) = kr {
+            m.kr = if reflective == Some(false) { 0.0 } else { v };
+        } else if reflective == Some(true) {
+            m.kr = 1.0;
+        }
+        Ok(())
+    }
+
+    /// The texture of shape `s` with material `node`, unless the mode draws none or a switch
+    /// turns it off. The texture keys count as read in every mode.
+    fn material_texture(
+        &mut self,
+        s: &Node,
+        node: &Node,
+        mode: RenderMode,
+        libraries: &mut Libraries,
+        m: &mut Material,
+    ) -> Result<(), SceneError> {
+        node.mark_read(texture::TEXTURE);
+        s.mark_read(texture::TEXTURE);
+        node.mark_read(&["diffuse"]);
         // A switch that turns the texture off leaves the diffuse colour alone.
-        let switched_on = match node.as_ref().and_then(|n| n.get_any(texture::SWITCH)) {
+        let switched_on = match node.get_any(texture::SWITCH) {
             Some(b) => b.bool()?,
             None => true,
         };
         if mode != RenderMode::Binary && switched_on {
             let tex_node = node
-                .as_ref()
-                .and_then(|n| {
-                    n.get_any(texture::TEXTURE)
-                        .or_else(|| n.get("diffuse").filter(|d| d.str().is_ok()))
-                })
+                .get_any(texture::TEXTURE)
+                .or_else(|| node.get("diffuse").filter(|d| d.str().is_ok()))
                 .or_else(|| s.get_any(texture::TEXTURE));
             if let Some(t) = tex_node {
                 m.texture = self.texture(&t, libraries)?;
             }
         }
-        self.materials.push(m);
-        Ok(self.materials.len() as u32 - 1)
+        Ok(())
     }
 
-    /// The mirror lobe's exponent for a Blinn-Phong material's `roughness` r ≥ 0 (some CGR files
-    /// give one; their renderers blur the mirror part with a GGX lobe of α = r², the convention
-    /// of Burley's "Physically Based Shading at Disney", SIGGRAPH 2012 course notes): a
-    /// microfacet roughness α = r², so 0 keeps a perfect mirror. Past 1 it is taken as 1 (the
-    /// roughest lobe) with a warning where there is a mirror to blur; a material without a
-    /// mirror part has nothing it applies to.
+    /// The mirror lobe's exponent for a Blinn-Phong material's `roughness` r ≥ 0: microfacet
+    /// roughness α = r² (Burley, "Physically Based Shading at Disney", SIGGRAPH 2012), so 0 keeps
+    /// a perfect mirror; past 1 it is taken as 1, with a warning if there is a mirror to blur.
     pub(super) fn mirror_roughness(&mut self, r: &Node, kr: f32) -> Result<f32, SceneError> {
         let v = r.f32()?;
         if !(v >= 0.0 && v.is_finite()) {
@@ -278,4 +248,82 @@ impl Loader<'_> {
         }
         Ok(false)
     }
+}
+
+/// The material of shape `s`: its `material` object, the library material its `material` string
+/// names, or (without a `material`) the shape itself, which may carry the material's keys.
+fn material_node<'a, 't>(
+    s: &Node<'a, 't>,
+    libraries: &Libraries<'a, 't>,
+) -> Result<Node<'a, 't>, SceneError> {
+    let node = s.get("material").unwrap_or_else(|| s.clone());
+    let Ok(named) = node.str() else {
+        return Ok(node);
+    };
+    match libraries.materials.find(named) {
+        Some((_, def)) => Ok(def.clone()),
+        None => {
+            let names = libraries.materials.names();
+            Err(node.error(format!(
+                "no material named '{named}' (the scene defines: {})",
+                if names.is_empty() {
+                    "none".to_string()
+                } else {
+                    names.join(", ")
+                }
+            )))
+        }
+    }
+}
+
+/// The Blinn-Phong weights `ka`, `kd`, `ks`, the specular exponent and the diffuse and specular
+/// colours (a `diffuse` string is a texture, read with the texture).
+fn phong_keys(n: &Node, m: &mut Material) -> Result<(), SceneError> {
+    if let Some(v) = opt_f32(n, &["ka"])? {
+        m.ka = v;
+    }
+    if let Some(v) = opt_f32(n, &["kd"])? {
+        m.kd = v;
+    }
+    if let Some(v) = opt_f32(n, &["ks"])? {
+        m.ks = v;
+    }
+    if let Some(v) = opt_f32(n, material::EXPONENT)? {
+        if v < 0.0 {
+            return Err(n.error(format!("the specular exponent must be ≥ 0, found {v}")));
+        }
+        m.exponent = v;
+    }
+    if let Some(c) = n.get_any(material::DIFFUSE) {
+        m.diffuse = c.color()?;
+    } else if let Some(c) = n.get("diffuse").filter(|c| c.str().is_err()) {
+        m.diffuse = c.color()?;
+    }
+    if let Some(c) = n.get_any(material::SPECULAR) {
+        m.specular = c.color()?;
+    }
+    Ok(())
+}
+
+/// The transmission weight `kt`, switched on or off by `isRefractive`, and the index of
+/// refraction; returns the node of the index, if the material gives one (checked later).
+fn transmission<'a, 't>(
+    n: &Node<'a, 't>,
+    m: &mut Material,
+) -> Result<Option<Node<'a, 't>>, SceneError> {
+    let refractive = n
+        .get_any(material::IS_REFRACTIVE)
+        .map(|b| b.bool())
+        .transpose()?;
+    if let Some(v) = opt_f32(n, material::KT)? {
+        m.kt = if refractive == Some(false) { 0.0 } else { v };
+    } else if refractive == Some(true) {
+        m.kt = 1.0;
+    }
+    let eta_node = n.get_any(material::ETA);
+    m.eta = match &eta_node {
+        Some(e) => e.f32()?,
+        None => DEFAULT_ETA,
+    };
+    Ok(eta_node)
 }

@@ -4,7 +4,7 @@ use super::required;
 use super::spellings::{type_of, SHAPE_TYPES};
 use super::Loader;
 use crate::geometry::MeshUv;
-use crate::math::Vec2;
+use crate::math::{Vec2, Vec3};
 use crate::scene::json::Node;
 use crate::scene::mesh_file::{read_mesh_with, MeshData, MeshLimits};
 use crate::scene::{poly_sphere, transform, SceneError};
@@ -21,6 +21,8 @@ pub(super) const MESH_FILE_KEYS: &[&str] = &[
 ];
 
 impl Loader<'_> {
+    /// A mesh shape: poly spheres, a mesh file, or a mesh written in the scene, placed by its
+    /// scale, rotation and translation keys.
     pub(super) fn mesh(&mut self, s: &Node, material: u32) -> Result<(), SceneError> {
         if !s.contains_any(MESH_FILE_KEYS) && poly_sphere::applies(s) {
             let budget = self.options.max_triangles.saturating_sub(self.triangles);
@@ -32,7 +34,7 @@ impl Loader<'_> {
         }
         let mut data = if let Some(fnode) = s.get_any(MESH_FILE_KEYS) {
             let rel = fnode.str()?;
-            let path = self.resolve(&fnode, rel)?;
+            let path = self.find_asset(&fnode, rel)?;
             let limits = MeshLimits {
                 max_bytes: self.options.max_mesh_bytes,
                 max_triangles: self.options.max_triangles,
@@ -78,175 +80,30 @@ impl Loader<'_> {
         self.add_mesh(s, data.positions, data.normals, uv, data.faces, material)
     }
 
-    /// A mesh written in the scene file. Spellings: `vertices`/`vs` with `faces`/`fs`/`tris`/
-    /// `triangles` (lists of index lists, polygons are fanned); `vertex`/`face` counts with
-    /// `v0…`/`f0…` keys; `vertexindex`/`verticesOnEachFace` (flat) with `faceindex`/
-    /// `numVerticesOnEachFace` (polygon sizes, their count in `faces`) and `texturemap`
-    /// (per-vertex uv); `points` alone (consecutive triples when the count is a multiple of 3,
-    /// otherwise one convex polygon).
+    /// A mesh written in the scene file: its vertices, its faces (polygons are fanned into
+    /// triangles) and optional per-vertex uvs (`texturemap`).
     pub(super) fn inline_mesh(&mut self, s: &Node) -> Result<MeshData, SceneError> {
-        let mut positions = Vec::new();
         let counted = s
             .get("vertex")
             .filter(|n| n.numbers().is_err() && n.u32().is_ok());
-        let vn = if let Some(count) = counted {
-            for i in 0..count.u32()? {
-                positions.push(required(s, &[&format!("v{i}")])?.vec3()?);
-            }
-            count
+        let (positions, vn) = if let Some(count) = counted {
+            (counted_vertices(s, &count)?, count)
         } else if let Some(list) = s
             .get("triangles")
             .filter(|t| t.elements().is_ok_and(|e| e.iter().all(|x| x.is_object())))
         {
-            // A list of triangle objects, each with its corners.
-            let mut faces = Vec::new();
-            let mesh_material = s.peek("material").and_then(|m| m.str().ok());
-            for t in list.elements()? {
-                // Each may say it is a triangle and name the mesh's material again.
-                if let Some(k) = t.get("type") {
-                    if type_of(SHAPE_TYPES, k.str()?) != Some("triangle") {
-                        return Err(k.error("a mesh's triangles are triangles"));
-                    }
-                }
-                if let Some(m) = t.get("material") {
-                    if m.str().ok() != mesh_material {
-                        self.warn(
-                            &m,
-                            "a triangle of a mesh has a material of its own; the mesh's is used",
-                        );
-                    }
-                }
-                let n = positions.len() as u32;
-                for k in ["v0", "v1", "v2"] {
-                    positions.push(required(&t, &[k])?.vec3()?);
-                }
-                faces.push([n, n + 1, n + 2]);
-            }
-            if faces.is_empty() {
-                return Err(list.error("the mesh has no triangles"));
-            }
-            return Ok(MeshData {
-                positions,
-                normals: None,
-                uvs: None,
-                faces,
-            });
+            return self.triangle_objects(s, &list);
         } else {
             let vn = required(s, &["vertices", "vs", "vertex", "points"])?;
+            let mut positions = Vec::new();
             for v in vn.elements()? {
                 positions.push(v.vec3()?);
             }
-            vn
+            (positions, vn)
         };
-        let check = |node: &Node, i: f64| -> Result<u32, SceneError> {
-            if i < 0.0 || i.fract() != 0.0 || i >= positions.len() as f64 {
-                return Err(node.error(format!(
-                    "vertex index {i} is out of range (the mesh has {} vertices)",
-                    positions.len()
-                )));
-            }
-            Ok(i as u32)
-        };
-        // One face written as a list of vertex indices.
-        let indices = |f: &Node| -> Result<Vec<u32>, SceneError> {
-            f.numbers()?.into_iter().map(|i| check(f, i)).collect()
-        };
-        let mut polygons: Vec<(Node, Vec<u32>)> = Vec::new();
-        if let (Some(sizes), Some(flat)) = (
-            s.get_any(&["faceindex", "numVerticesOnEachFace"]),
-            s.get_any(&["vertexindex", "verticesOnEachFace"]),
-        ) {
-            let idx = flat.numbers()?;
-            let mut at = 0usize;
-            for (k, size) in sizes.numbers()?.into_iter().enumerate() {
-                // `at + n` could overflow for a huge size (1e30 saturates to usize::MAX), so the
-                // size is compared with what is left; `at <= idx.len()` holds on every pass.
-                let n = size.max(0.0) as usize;
-                let left = idx.len() - at;
-                if n > left {
-                    return Err(sizes.error(format!(
-                        "face {k} needs {size} indices but '{}' has only {left} left",
-                        flat.key().unwrap_or("vertexindex")
-                    )));
-                }
-                let ids = idx[at..at + n]
-                    .iter()
-                    .map(|&i| check(&flat, i))
-                    .collect::<Result<Vec<_>, _>>()?;
-                polygons.push((sizes.clone(), ids));
-                at += n;
-            }
-            // A count of the faces beside the sizes must agree with them.
-            if let Some(count) = s.get("faces").filter(|n| n.u32().is_ok()) {
-                if count.u32()? as usize != polygons.len() {
-                    return Err(count.error(format!(
-                        "the mesh says it has {} faces but lists the sizes of {}",
-                        count.u32()?,
-                        polygons.len()
-                    )));
-                }
-            }
-        } else if let Some(count) = s.get("face").filter(|n| n.u32().is_ok()) {
-            for i in 0..count.u32()? {
-                let f = required(s, &[&format!("f{i}")])?;
-                let ids = indices(&f)?;
-                polygons.push((f, ids));
-            }
-        } else if let Some(fnode) = s.get_any(&["faces", "fs", "tris", "triangles", "face"]) {
-            for f in fnode.elements()? {
-                let ids = indices(&f)?;
-                polygons.push((f, ids));
-            }
-        } else if vn.path.ends_with("points") && !positions.is_empty() {
-            let n = positions.len() as u32;
-            if n.is_multiple_of(3) {
-                for t in 0..n / 3 {
-                    polygons.push((vn.clone(), vec![3 * t, 3 * t + 1, 3 * t + 2]));
-                }
-            } else {
-                polygons.push((vn.clone(), (0..n).collect()));
-            }
-        } else {
-            return Err(required(s, &["faces", "fs", "tris", "triangles"])
-                .err()
-                .unwrap_or_else(|| s.error("missing faces")));
-        }
-        if polygons.is_empty() {
-            return Err(s.error("the mesh has no faces"));
-        }
-        let mut faces = Vec::new();
-        for (node, ids) in polygons {
-            if ids.len() < 3 {
-                return Err(node.error(format!(
-                    "a face needs at least 3 vertex indices, found {}",
-                    ids.len()
-                )));
-            }
-            for k in 1..ids.len() - 1 {
-                faces.push([ids[0], ids[k], ids[k + 1]]);
-            }
-        }
-        let uvs = match s.get("texturemap") {
-            Some(t) => {
-                let mut uv = Vec::new();
-                for e in t.elements()? {
-                    let v = e.numbers()?;
-                    if v.len() != 2 {
-                        return Err(e.error(format!("expected 2 numbers, found {}", v.len())));
-                    }
-                    uv.push(Vec2::new(v[0] as f32, v[1] as f32));
-                }
-                if uv.len() != positions.len() {
-                    return Err(t.error(format!(
-                        "{} texture coordinates for {} vertices",
-                        uv.len(),
-                        positions.len()
-                    )));
-                }
-                Some(uv)
-            }
-            None => None,
-        };
+        let polygons = polygons(s, &vn, &positions)?;
+        let faces = fan(polygons)?;
+        let uvs = texture_map(s, positions.len())?;
         Ok(MeshData {
             positions,
             normals: None,
@@ -254,4 +111,198 @@ impl Loader<'_> {
             faces,
         })
     }
+
+    /// A mesh written as a `triangles` list of triangle objects, each with its corners
+    /// `v0`..`v2` (and perhaps its `type` and the mesh's `material` again).
+    fn triangle_objects(&mut self, s: &Node, list: &Node) -> Result<MeshData, SceneError> {
+        let mut positions = Vec::new();
+        let mut faces = Vec::new();
+        let mesh_material = s.peek("material").and_then(|m| m.str().ok());
+        for t in list.elements()? {
+            if let Some(k) = t.get("type") {
+                if type_of(SHAPE_TYPES, k.str()?) != Some("triangle") {
+                    return Err(k.error("a mesh's triangles are triangles"));
+                }
+            }
+            if let Some(m) = t.get("material") {
+                if m.str().ok() != mesh_material {
+                    self.warn(
+                        &m,
+                        "a triangle of a mesh has a material of its own; the mesh's is used",
+                    );
+                }
+            }
+            let n = positions.len() as u32;
+            for k in ["v0", "v1", "v2"] {
+                positions.push(required(&t, &[k])?.vec3()?);
+            }
+            faces.push([n, n + 1, n + 2]);
+        }
+        if faces.is_empty() {
+            return Err(list.error("the mesh has no triangles"));
+        }
+        Ok(MeshData {
+            positions,
+            normals: None,
+            uvs: None,
+            faces,
+        })
+    }
+}
+
+/// One face of an inline mesh: the node it was read from (for messages) and its vertex indices.
+type Polygon<'a, 't> = (Node<'a, 't>, Vec<u32>);
+
+/// The vertices of a mesh that gives their count in `vertex` and each in a key `v0`, `v1`, ….
+fn counted_vertices(s: &Node, count: &Node) -> Result<Vec<Vec3>, SceneError> {
+    let mut positions = Vec::new();
+    for i in 0..count.u32()? {
+        positions.push(required(s, &[&format!("v{i}")])?.vec3()?);
+    }
+    Ok(positions)
+}
+
+/// An inline mesh's faces, under any of their spellings: polygon sizes (`faceindex`) with a flat
+/// index list (`vertexindex`); a `face` count with `f0`, `f1`, … keys; lists of index lists
+/// (`faces`, `tris`, …); or, for a mesh given by `points` alone, consecutive triples when their
+/// count is a multiple of 3 and one convex polygon otherwise. `vn` is the node of the vertices.
+fn polygons<'a, 't>(
+    s: &Node<'a, 't>,
+    vn: &Node<'a, 't>,
+    positions: &[Vec3],
+) -> Result<Vec<Polygon<'a, 't>>, SceneError> {
+    let vertices = positions.len();
+    // One face written as a list of vertex indices.
+    let indices = |f: &Node| -> Result<Vec<u32>, SceneError> {
+        f.numbers()?
+            .into_iter()
+            .map(|i| vertex_index(f, i, vertices))
+            .collect()
+    };
+    let mut polygons: Vec<Polygon> = Vec::new();
+    if let (Some(sizes), Some(flat)) = (
+        s.get_any(&["faceindex", "numVerticesOnEachFace"]),
+        s.get_any(&["vertexindex", "verticesOnEachFace"]),
+    ) {
+        polygons = sized_faces(s, &sizes, &flat, vertices)?;
+    } else if let Some(count) = s.get("face").filter(|n| n.u32().is_ok()) {
+        for i in 0..count.u32()? {
+            let f = required(s, &[&format!("f{i}")])?;
+            let ids = indices(&f)?;
+            polygons.push((f, ids));
+        }
+    } else if let Some(fnode) = s.get_any(&["faces", "fs", "tris", "triangles", "face"]) {
+        for f in fnode.elements()? {
+            let ids = indices(&f)?;
+            polygons.push((f, ids));
+        }
+    } else if vn.path.ends_with("points") && !positions.is_empty() {
+        let n = positions.len() as u32;
+        if n.is_multiple_of(3) {
+            for t in 0..n / 3 {
+                polygons.push((vn.clone(), vec![3 * t, 3 * t + 1, 3 * t + 2]));
+            }
+        } else {
+            polygons.push((vn.clone(), (0..n).collect()));
+        }
+    } else {
+        return Err(required(s, &["faces", "fs", "tris", "triangles"])
+            .err()
+            .unwrap_or_else(|| s.error("missing faces")));
+    }
+    if polygons.is_empty() {
+        return Err(s.error("the mesh has no faces"));
+    }
+    Ok(polygons)
+}
+
+/// Faces given by their sizes (`sizes`, `faceindex`) and one flat list of all their vertex
+/// indices (`flat`, `vertexindex`); a `faces` count beside them must agree.
+fn sized_faces<'a, 't>(
+    s: &Node<'a, 't>,
+    sizes: &Node<'a, 't>,
+    flat: &Node<'a, 't>,
+    vertices: usize,
+) -> Result<Vec<Polygon<'a, 't>>, SceneError> {
+    let mut polygons = Vec::new();
+    let idx = flat.numbers()?;
+    let mut at = 0usize;
+    for (k, size) in sizes.numbers()?.into_iter().enumerate() {
+        // `at + n` could overflow for a huge size (1e30 saturates to usize::MAX), so the
+        // size is compared with what is left; `at <= idx.len()` holds on every pass.
+        let n = size.max(0.0) as usize;
+        let left = idx.len() - at;
+        if n > left {
+            return Err(sizes.error(format!(
+                "face {k} needs {size} indices but '{}' has only {left} left",
+                flat.key().unwrap_or("vertexindex")
+            )));
+        }
+        let ids = idx[at..at + n]
+            .iter()
+            .map(|&i| vertex_index(flat, i, vertices))
+            .collect::<Result<Vec<_>, _>>()?;
+        polygons.push((sizes.clone(), ids));
+        at += n;
+    }
+    if let Some(count) = s.get("faces").filter(|n| n.u32().is_ok()) {
+        if count.u32()? as usize != polygons.len() {
+            return Err(count.error(format!(
+                "the mesh says it has {} faces but lists the sizes of {}",
+                count.u32()?,
+                polygons.len()
+            )));
+        }
+    }
+    Ok(polygons)
+}
+
+/// The vertex index `i` read at `node`, checked against the mesh's count of `vertices`.
+fn vertex_index(node: &Node, i: f64, vertices: usize) -> Result<u32, SceneError> {
+    if i < 0.0 || i.fract() != 0.0 || i >= vertices as f64 {
+        return Err(node.error(format!(
+            "vertex index {i} is out of range (the mesh has {vertices} vertices)"
+        )));
+    }
+    Ok(i as u32)
+}
+
+/// The triangles of `polygons`, each fanned from its first vertex.
+fn fan(polygons: Vec<Polygon>) -> Result<Vec<[u32; 3]>, SceneError> {
+    let mut faces = Vec::new();
+    for (node, ids) in polygons {
+        if ids.len() < 3 {
+            return Err(node.error(format!(
+                "a face needs at least 3 vertex indices, found {}",
+                ids.len()
+            )));
+        }
+        for k in 1..ids.len() - 1 {
+            faces.push([ids[0], ids[k], ids[k + 1]]);
+        }
+    }
+    Ok(faces)
+}
+
+/// A mesh's per-vertex texture coordinates (`texturemap`: one `[u, v]` per vertex), if it gives
+/// them.
+fn texture_map(s: &Node, vertices: usize) -> Result<Option<Vec<Vec2>>, SceneError> {
+    let Some(t) = s.get("texturemap") else {
+        return Ok(None);
+    };
+    let mut uv = Vec::new();
+    for e in t.elements()? {
+        let v = e.numbers()?;
+        if v.len() != 2 {
+            return Err(e.error(format!("expected 2 numbers, found {}", v.len())));
+        }
+        uv.push(Vec2::new(v[0] as f32, v[1] as f32));
+    }
+    if uv.len() != vertices {
+        return Err(t.error(format!(
+            "{} texture coordinates for {vertices} vertices",
+            uv.len()
+        )));
+    }
+    Ok(Some(uv))
 }

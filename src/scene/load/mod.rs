@@ -54,10 +54,9 @@ pub const DEFAULT_MAX_PIXEL_SAMPLES: u32 = 65_536;
 /// Default cap on the scene file's size: 64 MiB. The parsed document takes about ten times the
 /// file's size in memory, and the largest real scene files (inline meshes) are under 2 MiB.
 pub const DEFAULT_MAX_SCENE_BYTES: u64 = 64 << 20;
-/// Default cap on one texture's `width × height`: 2^26 texels (67 megapixels, e.g. 8192²). A
-/// texture from an 8-bit image keeps 3 bytes a texel (192 MiB at this cap), other images 12-byte
-/// float texels (768 MiB); the check uses the image's
-/// header, before anything is decoded, so a small file claiming a huge image fails at once.
+/// Default cap on one texture's `width × height`: 2^26 texels (e.g. 8192²; 192 MiB of 8-bit or
+/// 768 MiB of float texels). Checked from the image's header before decoding, so a small file
+/// claiming a huge image fails at once.
 pub const DEFAULT_MAX_TEXTURE_PIXELS: u64 = 1 << 26;
 /// Default cap on a mesh file's size: 2 GiB. Mesh files are read whole into memory; the largest
 /// in the coursework corpus are about 1 MB.
@@ -172,6 +171,7 @@ pub fn load_str(text: &str, path: &Path, options: &LoadOptions) -> Result<Scene,
     loader.scene(&root)
 }
 
+/// The scene read so far, and what reading it needs.
 struct Loader<'o> {
     options: &'o LoadOptions,
     base: PathBuf,
@@ -203,6 +203,7 @@ pub const SPHERE_POLE: Vec3 = Vec3::Y;
 /// See [`SPHERE_POLE`].
 pub const SPHERE_SEAM: Vec3 = Vec3::NEG_X;
 
+/// The first present member among `keys` (spellings of one key); its absence is an error.
 pub(super) fn required<'a, 't>(
     node: &Node<'a, 't>,
     keys: &[&str],
@@ -218,7 +219,7 @@ pub(super) fn required<'a, 't>(
 }
 
 /// The required number `key`, which must be > 0.
-pub(super) fn positive(node: &Node, key: &str) -> Result<f32, SceneError> {
+pub(super) fn required_positive(node: &Node, key: &str) -> Result<f32, SceneError> {
     let n = required(node, &[key])?;
     let v = n.f32()?;
     if v <= 0.0 {
@@ -227,10 +228,12 @@ pub(super) fn positive(node: &Node, key: &str) -> Result<f32, SceneError> {
     Ok(v)
 }
 
+/// The number under the first present member among `keys`, if any.
 fn opt_f32(node: &Node, keys: &[&str]) -> Result<Option<f32>, SceneError> {
     node.get_any(keys).map(|n| n.f32()).transpose()
 }
 
+/// The 3-vector under the first present member among `keys`, if any.
 fn opt_vec3(node: &Node, keys: &[&str]) -> Result<Option<Vec3>, SceneError> {
     node.get_any(keys).map(|n| n.vec3()).transpose()
 }
@@ -258,6 +261,7 @@ fn nearest<'k>(name: &str, known: &[&'k str]) -> &'k str {
 }
 
 impl Loader<'_> {
+    /// Records a warning at `node`.
     fn warn(&mut self, node: &Node, message: impl Into<String>) {
         self.warnings.push(Warning {
             location: node.location(),
@@ -265,30 +269,12 @@ impl Loader<'_> {
         });
     }
 
+    /// The whole scene from the document's `root`: the camera and the file-wide settings, then
+    /// the lights and shapes, then the warnings for keys nothing read.
     fn scene(mut self, root: &Node) -> Result<Scene, SceneError> {
-        let mode = match root.get("rendermode") {
-            None => RenderMode::Phong,
-            Some(n) => match n.str()?.to_ascii_lowercase().as_str() {
-                "binary" => RenderMode::Binary,
-                "phong" => RenderMode::Phong,
-                "pathtrace" | "pathtracer" | "pathtracing" | "path" | "pt" => RenderMode::Path,
-                other => {
-                    self.warn(
-                        &n,
-                        format!("rendermode '{other}' is not supported; rendering with phong"),
-                    );
-                    RenderMode::Phong
-                }
-            },
-        };
+        let mode = self.render_mode(root)?;
         let camera_node = required(root, &["camera"])?;
-        let variant = if is_cgr(root, &camera_node) {
-            Variant::Cgr
-        } else if camera_node.has_any(&["position", "lookat", "up"]) {
-            Variant::V2021
-        } else {
-            Variant::V2019
-        };
+        let variant = variant(root, &camera_node);
         self.variant = variant;
         self.mode = mode;
         let (camera, exposure, lens_samples) = self.camera(root, &camera_node)?;
@@ -305,47 +291,8 @@ impl Loader<'_> {
         } else {
             exposure
         };
-
-        let nbounces = match root.get_any(spellings::scene::BOUNCES) {
-            None => DEFAULT_NBOUNCES,
-            Some(n) => {
-                let v = n.f64()?;
-                if v < 0.0 || v.fract() != 0.0 {
-                    return Err(n.error(format!("nbounces must be a whole number ≥ 0, found {v}")));
-                }
-                if v > self.options.max_bounces as f64 {
-                    return Err(n.error(format!(
-                        "nbounces {v} is over the limit of {} (raise it with --max-bounces)",
-                        self.options.max_bounces
-                    )));
-                }
-                v as u32
-            }
-        };
-
-        let scene_node = match root.get("scene") {
-            Some(n) => n,
-            // Some files put the scene's lists at the top level.
-            None if root.has_any(spellings::scene::SHAPE_LISTS)
-                || root.has_any(spellings::scene::LIGHT_LISTS) =>
-            {
-                root.clone()
-            }
-            None => return Err(root.error(
-                "nothing to render: no 'scene' object (nor top-level 'shapes' or 'lightsources')",
-            )),
-        };
-        if !scene_node.is_object() {
-            return Err(
-                scene_node.error(format!("expected an object, found {}", scene_node.kind()))
-            );
-        }
-        // One renderer's count of rays per rough reflection: here each camera sample traces one.
-        if !std::ptr::eq(scene_node.value, root.value) {
-            if let Some(n) = scene_node.get("nsamples") {
-                n.u32()?;
-            }
-        }
+        let nbounces = self.nbounces(root)?;
+        let scene_node = scene_object(root)?;
         let background = match scene_node.get_any(spellings::scene::BACKGROUND) {
             Some(n) => n.color()?,
             None => Vec3::ZERO,
@@ -353,41 +300,7 @@ impl Loader<'_> {
         if let Some(n) = scene_node.get_any(spellings::scene::AMBIENT) {
             self.ambient = Some(non_negative_color(&n)?);
         }
-        let mut listed = 0;
-        if let Some(lights) = scene_node.get_any(spellings::scene::LIGHT_LISTS) {
-            for l in lights.elements()? {
-                listed += 1;
-                self.light(&l)?;
-            }
-        }
-        let mut libraries = Libraries::read(&[root, &scene_node])?;
-        if let Some(shapes) = scene_node.get_any(spellings::scene::SHAPE_LISTS) {
-            for s in shapes.elements()? {
-                listed += 1;
-                let first = self.primitives.len();
-                self.shape(&s, mode, &mut libraries)?;
-                self.emitters.shape(&s, first..self.primitives.len());
-                if first < self.primitives.len() {
-                    let material = self.primitives.material(first as u32);
-                    let emission = self.materials[material as usize].emission;
-                    if emission.max_element() > 0.0 {
-                        self.emitters
-                            .glowing(&s, first..self.primitives.len(), emission);
-                    }
-                }
-            }
-        }
-        std::mem::take(&mut self.emitters).resolve(
-            &mut self.lights,
-            &self.primitives,
-            &mut self.warnings,
-        )?;
-        if listed == 0 {
-            self.warn(
-                &scene_node,
-                "the scene has no shapes and no lights; the image is the background",
-            );
-        }
+        self.lights_and_shapes(root, &scene_node)?;
         let (pixel_samples, light_samples) = self.sample_counts(root, lens_samples)?;
         let tone_map = self.renderer_switches(root)?;
         // Last, when every lookup is done: the keys none of them read.
@@ -395,20 +308,8 @@ impl Loader<'_> {
             self.warn(&node, message);
         }
         let has_transmissive = self.materials.iter().any(Material::is_transmissive);
-        // The CGR conventions (`docs/scene-format.md`, "CGR conventions"): the background is
-        // the ambient light, mirrors blend, and the course's display transform.
-        let (ambient, reflection, tone_map) = match variant {
-            Variant::Cgr => (
-                self.ambient.unwrap_or(background.max(Vec3::ZERO)),
-                Reflection::Blended,
-                tone_map.or(Some(ToneMap::Cgr)),
-            ),
-            Variant::V2019 | Variant::V2021 => (
-                self.ambient.unwrap_or(Vec3::ZERO),
-                Reflection::Added,
-                tone_map,
-            ),
-        };
+        let (ambient, reflection, tone_map) =
+            conventions(variant, self.ambient, background, tone_map);
         Ok(Scene {
             variant,
             camera,
@@ -430,6 +331,90 @@ impl Loader<'_> {
             warnings: self.warnings,
             inputs: self.inputs,
         })
+    }
+
+    /// The file's `rendermode` (Phong when it gives none, or one not supported, with a warning).
+    fn render_mode(&mut self, root: &Node) -> Result<RenderMode, SceneError> {
+        Ok(match root.get("rendermode") {
+            None => RenderMode::Phong,
+            Some(n) => match n.str()?.to_ascii_lowercase().as_str() {
+                "binary" => RenderMode::Binary,
+                "phong" => RenderMode::Phong,
+                "pathtrace" | "pathtracer" | "pathtracing" | "path" | "pt" => RenderMode::Path,
+                other => {
+                    self.warn(
+                        &n,
+                        format!("rendermode '{other}' is not supported; rendering with phong"),
+                    );
+                    RenderMode::Phong
+                }
+            },
+        })
+    }
+
+    /// `nbounces`: a whole number within [`LoadOptions::max_bounces`].
+    fn nbounces(&self, root: &Node) -> Result<u32, SceneError> {
+        let Some(n) = root.get_any(spellings::scene::BOUNCES) else {
+            return Ok(DEFAULT_NBOUNCES);
+        };
+        let v = n.f64()?;
+        if v < 0.0 || v.fract() != 0.0 {
+            return Err(n.error(format!("nbounces must be a whole number ≥ 0, found {v}")));
+        }
+        if v > self.options.max_bounces as f64 {
+            return Err(n.error(format!(
+                "nbounces {v} is over the limit of {} (raise it with --max-bounces)",
+                self.options.max_bounces
+            )));
+        }
+        Ok(v as u32)
+    }
+
+    /// Reads the lights, the material and texture libraries and the shapes of `scene_node`, then
+    /// ties area lights to their shapes; a scene with neither lights nor shapes is warned about.
+    fn lights_and_shapes(&mut self, root: &Node, scene_node: &Node) -> Result<(), SceneError> {
+        let mut listed = 0;
+        if let Some(lights) = scene_node.get_any(spellings::scene::LIGHT_LISTS) {
+            for l in lights.elements()? {
+                listed += 1;
+                self.light(&l)?;
+            }
+        }
+        let mut libraries = Libraries::read(&[root, scene_node])?;
+        if let Some(shapes) = scene_node.get_any(spellings::scene::SHAPE_LISTS) {
+            for s in shapes.elements()? {
+                listed += 1;
+                self.listed_shape(&s, &mut libraries)?;
+            }
+        }
+        std::mem::take(&mut self.emitters).resolve(
+            &mut self.lights,
+            &self.primitives,
+            &mut self.warnings,
+        )?;
+        if listed == 0 {
+            self.warn(
+                scene_node,
+                "the scene has no shapes and no lights; the image is the background",
+            );
+        }
+        Ok(())
+    }
+
+    /// Reads one shape of the scene's list, noting its `id` and whether its material emits.
+    fn listed_shape(&mut self, s: &Node, libraries: &mut Libraries) -> Result<(), SceneError> {
+        let first = self.primitives.len();
+        self.shape(s, self.mode, libraries)?;
+        self.emitters.note_shape(s, first..self.primitives.len());
+        if first < self.primitives.len() {
+            let material = self.primitives.material(first as u32);
+            let emission = self.materials[material as usize].emission;
+            if emission.max_element() > 0.0 {
+                self.emitters
+                    .note_glowing(s, first..self.primitives.len(), emission);
+            }
+        }
+        Ok(())
     }
 
     /// The scene's samples per pixel and shadow rays per area light, from the top-level keys or
@@ -486,12 +471,10 @@ impl Loader<'_> {
         Ok((pixel, light))
     }
 
-    /// Top-level switches of the renderers path-tracing files were written for. Sampling
-    /// strategies change how fast an image converges, not what it converges to, and global
-    /// illumination and caustics are what the path tracer does: those are read quietly.
-    /// Post-processes this renderer does not do (a denoiser, a blur) are warned about when a file
-    /// turns them on; the tone map a file turns on (`use_tone_mapping`: Kierandon's renderer
-    /// applies Reinhard's `x/(1+x)` per channel) is returned.
+    /// Top-level switches of the renderers path-tracing files were written for: sampling and
+    /// global illumination switches are read quietly (they change how fast the image converges,
+    /// not what to), post-processes not done here (a denoiser, a blur) are warned about, and the
+    /// tone map the file names or turns on is returned.
     fn renderer_switches(&mut self, root: &Node) -> Result<Option<ToneMap>, SceneError> {
         for key in [
             "use_stratified_sampling",
@@ -537,6 +520,7 @@ impl Loader<'_> {
                 Err(e) => self.warn(&n, format!("{e}; the default tone map is used")),
             }
         }
+        // Kierandon's renderer applies Reinhard's `x/(1+x)` per channel.
         match root.get("use_tone_mapping") {
             Some(n) if n.bool()? => Ok(Some(ToneMap::Reinhard)),
             _ => Ok(None),
@@ -563,6 +547,66 @@ impl Loader<'_> {
                 Method::Jittered
             }
         }))
+    }
+}
+
+/// The object that holds the scene's lists: `scene`, or the top level when the lists are there.
+fn scene_object<'a, 't>(root: &Node<'a, 't>) -> Result<Node<'a, 't>, SceneError> {
+    let scene_node =
+        match root.get("scene") {
+            Some(n) => n,
+            // Some files put the scene's lists at the top level.
+            None if root.has_any(spellings::scene::SHAPE_LISTS)
+                || root.has_any(spellings::scene::LIGHT_LISTS) =>
+            {
+                root.clone()
+            }
+            None => return Err(root.error(
+                "nothing to render: no 'scene' object (nor top-level 'shapes' or 'lightsources')",
+            )),
+        };
+    if !scene_node.is_object() {
+        return Err(scene_node.error(format!("expected an object, found {}", scene_node.kind())));
+    }
+    // One renderer's count of rays per rough reflection: here each camera sample traces one.
+    if !std::ptr::eq(scene_node.value, root.value) {
+        if let Some(n) = scene_node.get("nsamples") {
+            n.u32()?;
+        }
+    }
+    Ok(scene_node)
+}
+
+/// The ambient light, the way mirrors combine with their shading, and the tone map of a file of
+/// `variant`, from what the file gives. The CGR conventions (`docs/scene-format.md`, "CGR
+/// conventions"): the background is the ambient light, mirrors blend, and the course's display
+/// transform.
+fn conventions(
+    variant: Variant,
+    ambient: Option<Vec3>,
+    background: Vec3,
+    tone_map: Option<ToneMap>,
+) -> (Vec3, Reflection, Option<ToneMap>) {
+    match variant {
+        Variant::Cgr => (
+            ambient.unwrap_or(background.max(Vec3::ZERO)),
+            Reflection::Blended,
+            tone_map.or(Some(ToneMap::Cgr)),
+        ),
+        Variant::V2019 | Variant::V2021 => {
+            (ambient.unwrap_or(Vec3::ZERO), Reflection::Added, tone_map)
+        }
+    }
+}
+
+/// Which variant of the format a file follows, from its top level and its camera.
+fn variant(root: &Node, camera: &Node) -> Variant {
+    if is_cgr(root, camera) {
+        Variant::Cgr
+    } else if camera.has_any(&["position", "lookat", "up"]) {
+        Variant::V2021
+    } else {
+        Variant::V2019
     }
 }
 

@@ -2,7 +2,7 @@
 
 use super::spellings::{shape, type_names, type_of, SHAPE_TYPES};
 use super::texture::Libraries;
-use super::{nearest, positive, required, Loader, SPHERE_POLE, SPHERE_SEAM};
+use super::{nearest, required, required_positive, Loader, SPHERE_POLE, SPHERE_SEAM};
 use crate::accel::aabb::Aabb;
 use crate::geometry::{Cylinder, Mesh, MeshUv, Plane, Primitive, Shape, Sphere};
 use crate::math::{Vec2, Vec3};
@@ -11,6 +11,8 @@ use crate::scene::transform::{self, Affine};
 use crate::scene::{rectangle, RenderMode, SceneError};
 
 impl Loader<'_> {
+    /// Reads the shape `s` into the scene's primitives, with its material; a shape of unknown
+    /// `type` is skipped with a warning.
     pub(super) fn shape(
         &mut self,
         s: &Node,
@@ -33,119 +35,11 @@ impl Loader<'_> {
         };
         let material = self.material(s, mode, libraries)?;
         match kind {
-            "sphere" => {
-                let center = required(s, shape::CENTRE)?.vec3()?;
-                let radius = positive(s, "radius")?;
-                self.primitives.push(Primitive {
-                    shape: Shape::Sphere(Sphere::new(center, radius, SPHERE_POLE, SPHERE_SEAM)),
-                    material,
-                });
-            }
-            "cylinder" => {
-                let center = required(s, shape::CENTRE)?.vec3()?;
-                let an = required(s, &["axis"])?;
-                let axis = an.vec3()?;
-                if axis.length_squared() == 0.0 {
-                    return Err(an.error("the axis must not be zero"));
-                }
-                let radius = positive(s, "radius")?;
-                let half = positive(s, "height")?;
-                self.primitives.push(Primitive {
-                    shape: Shape::Cylinder(Cylinder::new(center, axis, radius, half)),
-                    material,
-                });
-            }
-            "triangle" => {
-                let p = self.corners(s, 3)?;
-                if (p[1] - p[0]).cross(p[2] - p[0]) == Vec3::ZERO {
-                    return Err(s.error("the triangle has zero area (its corners are collinear)"));
-                }
-                let uv = self.corner_uvs(s, 3)?.unwrap_or_else(|| {
-                    vec![
-                        Vec2::new(0.0, 0.0),
-                        Vec2::new(1.0, 0.0),
-                        Vec2::new(1.0, 1.0),
-                    ]
-                });
-                self.add_mesh(s, p, None, MeshUv::PerVertex(uv), vec![[0, 1, 2]], material)?;
-            }
-            "quad" => {
-                let has_corners =
-                    s.contains_any(&["v0", "v1", "point1", "p0", "points", "vertices", "corner1"]);
-                if s.contains_any(&["normal", "distance"]) && !has_corners {
-                    let plane = infinite_plane(s)?;
-                    self.primitives.push(Primitive {
-                        shape: Shape::Plane(plane),
-                        material,
-                    });
-                    return Ok(());
-                }
-                let p = if let (Some(a), Some(b)) = (s.get("corner1"), s.get("corner2")) {
-                    axis_rectangle(s, a.vec3()?, b.vec3()?)?
-                } else if !has_corners && s.contains_any(&["center", "centre"]) {
-                    centred_rectangle(s)?
-                } else {
-                    self.corners(s, 4)?
-                };
-                // Corners in "Z order" are put in cycle order; explicit uvs follow their corners,
-                // the default ones put image pixel (0,0) at v0 and the first row along v0→v1.
-                let order = cycle_order([p[0], p[1], p[2], p[3]]);
-                let p: Vec<Vec3> = order.iter().map(|&i| p[i]).collect();
-                let area2 = (p[1] - p[0]).cross(p[2] - p[0]) + (p[2] - p[0]).cross(p[3] - p[0]);
-                if area2 == Vec3::ZERO {
-                    return Err(s.error("the quad has zero area (its corners are collinear)"));
-                }
-                let uv = match self.corner_uvs(s, 4)? {
-                    Some(uv) => order.iter().map(|&i| uv[i]).collect(),
-                    None => vec![
-                        Vec2::new(0.0, 0.0),
-                        Vec2::new(1.0, 0.0),
-                        Vec2::new(1.0, 1.0),
-                        Vec2::new(0.0, 1.0),
-                    ],
-                };
-                self.add_mesh(
-                    s,
-                    p,
-                    None,
-                    MeshUv::PerVertex(uv),
-                    vec![[0, 1, 2], [0, 2, 3]],
-                    material,
-                )?;
-            }
-            "box" => {
-                let (min, max) = if let Some(c) = s.get_any(&["center", "centre"]) {
-                    // Centre and edge lengths along x (`width`), y (`height`), z (`depth`).
-                    let c = c.vec3()?;
-                    let size = Vec3::new(
-                        required(s, &["width"])?.f32()?,
-                        required(s, &["height"])?.f32()?,
-                        required(s, &["depth"])?.f32()?,
-                    );
-                    (c - 0.5 * size, c + 0.5 * size)
-                } else {
-                    (
-                        required(s, &["min"])?.vec3()?,
-                        required(s, &["max"])?.vec3()?,
-                    )
-                };
-                let (mut p, faces) = box_mesh(min.min(max), min.max(max));
-                // A box given by its centre turns about its centre; one given by its corners
-                // turns about the world origin (docs/scene-format.md gives the evidence).
-                if let Some(r) = transform::rotation(s)? {
-                    let pivot = if s.has_any(&["center", "centre"]) {
-                        0.5 * (min + max)
-                    } else {
-                        Vec3::ZERO
-                    };
-                    let a = Affine {
-                        linear: r,
-                        translation: pivot - r * pivot,
-                    };
-                    p.iter_mut().for_each(|q| *q = a.point(*q));
-                }
-                self.add_mesh(s, p, None, MeshUv::Strip, faces, material)?;
-            }
+            "sphere" => self.sphere_shape(s, material),
+            "cylinder" => self.cylinder_shape(s, material),
+            "triangle" => self.triangle_shape(s, material),
+            "quad" => self.quad_shape(s, material),
+            "box" => self.box_shape(s, material),
             "rectanglexy" | "rectanglexz" | "rectangleyz" => {
                 let r = rectangle::read(s, kind)?;
                 self.add_mesh(
@@ -155,11 +49,138 @@ impl Loader<'_> {
                     MeshUv::PerVertex(r.uvs.to_vec()),
                     vec![[0, 1, 2], [0, 2, 3]],
                     material,
-                )?;
+                )
             }
-            _ => self.mesh(s, material)?,
+            _ => self.mesh(s, material),
         }
+    }
+
+    /// A sphere: a centre and a radius.
+    fn sphere_shape(&mut self, s: &Node, material: u32) -> Result<(), SceneError> {
+        let center = required(s, shape::CENTRE)?.vec3()?;
+        let radius = required_positive(s, "radius")?;
+        self.primitives.push(Primitive {
+            shape: Shape::Sphere(Sphere::new(center, radius, SPHERE_POLE, SPHERE_SEAM)),
+            material,
+        });
         Ok(())
+    }
+
+    /// A closed cylinder: a centre, an axis, a radius and its half-height (`height`).
+    fn cylinder_shape(&mut self, s: &Node, material: u32) -> Result<(), SceneError> {
+        let center = required(s, shape::CENTRE)?.vec3()?;
+        let an = required(s, &["axis"])?;
+        let axis = an.vec3()?;
+        if axis.length_squared() == 0.0 {
+            return Err(an.error("the axis must not be zero"));
+        }
+        let radius = required_positive(s, "radius")?;
+        let half = required_positive(s, "height")?;
+        self.primitives.push(Primitive {
+            shape: Shape::Cylinder(Cylinder::new(center, axis, radius, half)),
+            material,
+        });
+        Ok(())
+    }
+
+    /// A triangle: three corners, with optional uvs.
+    fn triangle_shape(&mut self, s: &Node, material: u32) -> Result<(), SceneError> {
+        let p = self.corners(s, 3)?;
+        if (p[1] - p[0]).cross(p[2] - p[0]) == Vec3::ZERO {
+            return Err(s.error("the triangle has zero area (its corners are collinear)"));
+        }
+        let uv = self.corner_uvs(s, 3)?.unwrap_or_else(|| {
+            vec![
+                Vec2::new(0.0, 0.0),
+                Vec2::new(1.0, 0.0),
+                Vec2::new(1.0, 1.0),
+            ]
+        });
+        self.add_mesh(s, p, None, MeshUv::PerVertex(uv), vec![[0, 1, 2]], material)
+    }
+
+    /// A quad (`plane` and its spellings): an infinite plane when it gives a normal and a distance
+    /// but no corners, otherwise a parallelogram from its corners, two opposite corners of an
+    /// axis-aligned rectangle, or a centre and a size.
+    fn quad_shape(&mut self, s: &Node, material: u32) -> Result<(), SceneError> {
+        let has_corners =
+            s.contains_any(&["v0", "v1", "point1", "p0", "points", "vertices", "corner1"]);
+        if s.contains_any(&["normal", "distance"]) && !has_corners {
+            let plane = infinite_plane(s)?;
+            self.primitives.push(Primitive {
+                shape: Shape::Plane(plane),
+                material,
+            });
+            return Ok(());
+        }
+        let p = if let (Some(a), Some(b)) = (s.get("corner1"), s.get("corner2")) {
+            axis_rectangle(s, a.vec3()?, b.vec3()?)?
+        } else if !has_corners && s.contains_any(&["center", "centre"]) {
+            centred_rectangle(s)?
+        } else {
+            self.corners(s, 4)?
+        };
+        // Corners in "Z order" are put in cycle order; explicit uvs follow their corners,
+        // the default ones put image pixel (0,0) at v0 and the first row along v0→v1.
+        let order = cycle_order([p[0], p[1], p[2], p[3]]);
+        let p: Vec<Vec3> = order.iter().map(|&i| p[i]).collect();
+        let area2 = (p[1] - p[0]).cross(p[2] - p[0]) + (p[2] - p[0]).cross(p[3] - p[0]);
+        if area2 == Vec3::ZERO {
+            return Err(s.error("the quad has zero area (its corners are collinear)"));
+        }
+        let uv = match self.corner_uvs(s, 4)? {
+            Some(uv) => order.iter().map(|&i| uv[i]).collect(),
+            None => vec![
+                Vec2::new(0.0, 0.0),
+                Vec2::new(1.0, 0.0),
+                Vec2::new(1.0, 1.0),
+                Vec2::new(0.0, 1.0),
+            ],
+        };
+        self.add_mesh(
+            s,
+            p,
+            None,
+            MeshUv::PerVertex(uv),
+            vec![[0, 1, 2], [0, 2, 3]],
+            material,
+        )
+    }
+
+    /// An axis-aligned box, from its `min` and `max` corners or its centre and edge lengths,
+    /// optionally rotated.
+    fn box_shape(&mut self, s: &Node, material: u32) -> Result<(), SceneError> {
+        let (min, max) = if let Some(c) = s.get_any(&["center", "centre"]) {
+            // Centre and edge lengths along x (`width`), y (`height`), z (`depth`).
+            let c = c.vec3()?;
+            let size = Vec3::new(
+                required(s, &["width"])?.f32()?,
+                required(s, &["height"])?.f32()?,
+                required(s, &["depth"])?.f32()?,
+            );
+            (c - 0.5 * size, c + 0.5 * size)
+        } else {
+            (
+                required(s, &["min"])?.vec3()?,
+                required(s, &["max"])?.vec3()?,
+            )
+        };
+        let (mut p, faces) = box_mesh(min.min(max), min.max(max));
+        // A box given by its centre turns about its centre; one given by its corners
+        // turns about the world origin (docs/scene-format.md gives the evidence).
+        if let Some(r) = transform::rotation(s)? {
+            let pivot = if s.has_any(&["center", "centre"]) {
+                0.5 * (min + max)
+            } else {
+                Vec3::ZERO
+            };
+            let a = Affine {
+                linear: r,
+                translation: pivot - r * pivot,
+            };
+            p.iter_mut().for_each(|q| *q = a.point(*q));
+        }
+        self.add_mesh(s, p, None, MeshUv::Strip, faces, material)
     }
 
     /// The corner points of a triangle (`n = 3`) or quad (`n = 4`), under any of the spellings.
@@ -196,6 +217,7 @@ impl Loader<'_> {
         )))
     }
 
+    /// The uvs of a triangle's or quad's `n` corners (`uv0`.. or `uv1`..), if it gives them all.
     pub(super) fn corner_uvs(&self, s: &Node, n: usize) -> Result<Option<Vec<Vec2>>, SceneError> {
         for keys in [["uv0", "uv1", "uv2", "uv3"], ["uv1", "uv2", "uv3", "uv4"]] {
             if s.get(keys[0]).is_some() && s.get(keys[n - 1]).is_some() {
@@ -214,6 +236,7 @@ impl Loader<'_> {
         Ok(None)
     }
 
+    /// Adds a triangle mesh with `material` to the primitives, within the triangle limit.
     pub(super) fn add_mesh(
         &mut self,
         node: &Node,
@@ -325,8 +348,8 @@ pub(super) fn infinite_plane(s: &Node) -> Result<Plane, SceneError> {
 /// (−width/2, −height/2).
 pub(super) fn centred_rectangle(s: &Node) -> Result<Vec<Vec3>, SceneError> {
     let c = required(s, &["center", "centre"])?.vec3()?;
-    let w = positive(s, "width")?;
-    let h = positive(s, "height")?;
+    let w = required_positive(s, "width")?;
+    let h = required_positive(s, "height")?;
     let r = transform::rotation(s)?.unwrap_or(glam::Mat3::IDENTITY);
     let local = [
         Vec3::new(-0.5 * w, 0.0, -0.5 * h),

@@ -331,108 +331,142 @@ pub const TEXTURE_TYPES: &[Spelling] = &[
 
 /// The tables, in the order the documentation shows them.
 pub fn tables() -> Vec<Table> {
-    let k = |concept, names| Spelling { concept, names };
     vec![
-        Table {
-            entity: "top level and `scene`",
-            types: &[],
-            keys: vec![
-                k("shape list", scene::SHAPE_LISTS),
-                k("light list", scene::LIGHT_LISTS),
-                k("most bounces", scene::BOUNCES),
-                k("background colour", scene::BACKGROUND),
-                k("ambient light", scene::AMBIENT),
-                k("samples per pixel", scene::PIXEL_SAMPLES),
-                k("shadow rays per area light", scene::LIGHT_SAMPLES),
-                k("sample placement", scene::SAMPLER),
-                k("jittered or random samples", scene::JITTER),
-                k("tone map (camera or top level)", scene::TONE_MAP),
-            ],
-        },
-        Table {
-            entity: "camera",
-            types: CAMERA_TYPES,
-            keys: vec![
-                k("position", camera::POSITION),
-                k("point looked at", camera::LOOK),
-                k("up", camera::UP),
-                k("camera-to-world matrix", camera::MATRIX),
-                k("vertical field of view", camera::FOV),
-                k("horizontal field of view", camera::HFOV),
-                k("exposure", camera::EXPOSURE),
-                k("lens radius", camera::LENS_RADIUS),
-                k("lens diameter", camera::LENS_DIAMETER),
-                k("focus distance", camera::FOCUS),
-                k(
-                    "focus distance beside a focal length",
-                    camera::FOCUS_DISTANCE,
-                ),
-                k(
-                    "focal length (with `d` or an f-number)",
-                    camera::FOCAL_LENGTH,
-                ),
-                k(
-                    "image distance (with a focal length)",
-                    camera::IMAGE_DISTANCE,
-                ),
-                k("f-number", camera::F_NUMBER),
-                k("lens samples", camera::LENS_SAMPLES),
-            ],
-        },
-        Table {
-            entity: "light",
-            types: LIGHT_TYPES,
-            keys: vec![
-                k("position or centre", light::POSITION),
-                k("intensity", light::INTENSITY),
-                k("colour", light::COLOUR),
-                k("radius (sphere, disc)", light::RADIUS),
-                k("normal (disc, quad)", light::NORMAL),
-                k("corner (with two edges)", light::CORNER),
-                k("first edge from the corner", light::EDGE_1),
-                k("second edge from the corner", light::EDGE_2),
-                k("first edge about the centre", light::AXIS_U),
-                k("second edge about the centre", light::AXIS_V),
-                k("shadow rays", light::SAMPLES),
-            ],
-        },
-        Table {
-            entity: "shape",
-            types: SHAPE_TYPES,
-            keys: vec![k("centre", shape::CENTRE)],
-        },
-        Table {
-            entity: "material",
-            types: MATERIAL_TYPES,
-            keys: vec![
-                k("specular exponent", material::EXPONENT),
-                k("diffuse colour", material::DIFFUSE),
-                k("specular colour", material::SPECULAR),
-                k("is a mirror", material::IS_REFLECTIVE),
-                k("mirror weight", material::KR),
-                k("is glass", material::IS_REFRACTIVE),
-                k("transmission weight", material::KT),
-                k("index of refraction", material::ETA),
-                k("emitted radiance", material::EMISSION),
-                k("glass tint", material::TRANSMIT_COLOUR),
-                k("roughness", material::ROUGHNESS),
-                k("metal colour", material::METAL_COLOUR),
-            ],
-        },
-        Table {
-            entity: "texture",
-            types: TEXTURE_TYPES,
-            keys: vec![
-                k("texture", texture::TEXTURE),
-                k("texture switch", texture::SWITCH),
-                k("image file", texture::PATH),
-                k("checkerboard's first colour", texture::CHECKER_COLOURS[0]),
-                k("checkerboard's second colour", texture::CHECKER_COLOURS[1]),
-                k("checkerboard's squares per unit", texture::CHECKER_SCALE),
-                k("checkerboard's space", texture::CHECKER_SPACE),
-            ],
-        },
+        top_level_table(),
+        camera_table(),
+        light_table(),
+        shape_table(),
+        material_table(),
+        texture_table(),
     ]
+}
+
+/// One concept of a table's keys.
+fn key(concept: &'static str, names: &'static [&'static str]) -> Spelling {
+    Spelling { concept, names }
+}
+
+/// The spellings of the top level and the `scene` object.
+fn top_level_table() -> Table {
+    Table {
+        entity: "top level and `scene`",
+        types: &[],
+        keys: vec![
+            key("shape list", scene::SHAPE_LISTS),
+            key("light list", scene::LIGHT_LISTS),
+            key("most bounces", scene::BOUNCES),
+            key("background colour", scene::BACKGROUND),
+            key("ambient light", scene::AMBIENT),
+            key("samples per pixel", scene::PIXEL_SAMPLES),
+            key("shadow rays per area light", scene::LIGHT_SAMPLES),
+            key("sample placement", scene::SAMPLER),
+            key("jittered or random samples", scene::JITTER),
+            key("tone map (camera or top level)", scene::TONE_MAP),
+        ],
+    }
+}
+
+/// The spellings of the camera.
+fn camera_table() -> Table {
+    Table {
+        entity: "camera",
+        types: CAMERA_TYPES,
+        keys: vec![
+            key("position", camera::POSITION),
+            key("point looked at", camera::LOOK),
+            key("up", camera::UP),
+            key("camera-to-world matrix", camera::MATRIX),
+            key("vertical field of view", camera::FOV),
+            key("horizontal field of view", camera::HFOV),
+            key("exposure", camera::EXPOSURE),
+            key("lens radius", camera::LENS_RADIUS),
+            key("lens diameter", camera::LENS_DIAMETER),
+            key("focus distance", camera::FOCUS),
+            key(
+                "focus distance beside a focal length",
+                camera::FOCUS_DISTANCE,
+            ),
+            key(
+                "focal length (with `d` or an f-number)",
+                camera::FOCAL_LENGTH,
+            ),
+            key(
+                "image distance (with a focal length)",
+                camera::IMAGE_DISTANCE,
+            ),
+            key("f-number", camera::F_NUMBER),
+            key("lens samples", camera::LENS_SAMPLES),
+        ],
+    }
+}
+
+/// The spellings of lights.
+fn light_table() -> Table {
+    Table {
+        entity: "light",
+        types: LIGHT_TYPES,
+        keys: vec![
+            key("position or centre", light::POSITION),
+            key("intensity", light::INTENSITY),
+            key("colour", light::COLOUR),
+            key("radius (sphere, disc)", light::RADIUS),
+            key("normal (disc, quad)", light::NORMAL),
+            key("corner (with two edges)", light::CORNER),
+            key("first edge from the corner", light::EDGE_1),
+            key("second edge from the corner", light::EDGE_2),
+            key("first edge about the centre", light::AXIS_U),
+            key("second edge about the centre", light::AXIS_V),
+            key("shadow rays", light::SAMPLES),
+        ],
+    }
+}
+
+/// The spellings of shapes.
+fn shape_table() -> Table {
+    Table {
+        entity: "shape",
+        types: SHAPE_TYPES,
+        keys: vec![key("centre", shape::CENTRE)],
+    }
+}
+
+/// The spellings of materials.
+fn material_table() -> Table {
+    Table {
+        entity: "material",
+        types: MATERIAL_TYPES,
+        keys: vec![
+            key("specular exponent", material::EXPONENT),
+            key("diffuse colour", material::DIFFUSE),
+            key("specular colour", material::SPECULAR),
+            key("is a mirror", material::IS_REFLECTIVE),
+            key("mirror weight", material::KR),
+            key("is glass", material::IS_REFRACTIVE),
+            key("transmission weight", material::KT),
+            key("index of refraction", material::ETA),
+            key("emitted radiance", material::EMISSION),
+            key("glass tint", material::TRANSMIT_COLOUR),
+            key("roughness", material::ROUGHNESS),
+            key("metal colour", material::METAL_COLOUR),
+        ],
+    }
+}
+
+/// The spellings of textures.
+fn texture_table() -> Table {
+    Table {
+        entity: "texture",
+        types: TEXTURE_TYPES,
+        keys: vec![
+            key("texture", texture::TEXTURE),
+            key("texture switch", texture::SWITCH),
+            key("image file", texture::PATH),
+            key("checkerboard's first colour", texture::CHECKER_COLOURS[0]),
+            key("checkerboard's second colour", texture::CHECKER_COLOURS[1]),
+            key("checkerboard's squares per unit", texture::CHECKER_SCALE),
+            key("checkerboard's space", texture::CHECKER_SPACE),
+        ],
+    }
 }
 
 /// The tables as Markdown, for `docs/scene-format.md`.

@@ -28,11 +28,13 @@ impl<'a, 't> Library<'a, 't> {
         self.defs.push(def);
     }
 
+    /// The first definition named `name`.
     pub(super) fn find(&self, name: &str) -> Option<&(String, Node<'a, 't>)> {
         let i = self.index.find(name, |i| self.defs[i].0.as_str())?;
         Some(&self.defs[i])
     }
 
+    /// Every defined name, in file order.
     pub(super) fn names(&self) -> Vec<&str> {
         self.defs.iter().map(|(n, _)| n.as_str()).collect()
     }
@@ -138,7 +140,7 @@ impl Loader<'_> {
             for ext in ["ppm", "png", "jpg"] {
                 for folder in ["", "textures/"] {
                     let candidate = format!("{folder}{rel}.{ext}");
-                    if let Ok(path) = self.resolve(&node, &candidate) {
+                    if let Ok(path) = self.find_asset(&node, &candidate) {
                         let done = self.image_texture_at(&node, path, Vec2::ZERO)?;
                         libraries.loaded.insert(rel.to_string(), done);
                         return Ok(Some(done));
@@ -203,7 +205,7 @@ impl Loader<'_> {
         rel: &str,
         offset: Vec2,
     ) -> Result<u32, SceneError> {
-        let path = self.resolve(node, rel)?;
+        let path = self.find_asset(node, rel)?;
         self.image_texture_at(node, path, offset)
     }
 
