@@ -23,7 +23,7 @@ use crate::ray::{PreparedRay, Ray, SpawnPoints};
 use crate::sampling::PointSet;
 
 use super::super::LIGHT_CLEARANCE;
-use super::{Passage, SHADOW_RAYS_PER_CANCEL_CHECK};
+use super::{ShadowCrossings, SHADOW_RAYS_PER_CANCEL_CHECK};
 
 /// The quad light `origin + s·edge_u + t·edge_v`.
 pub(super) struct Quad<'l> {
@@ -298,7 +298,7 @@ impl Whitted<'_> {
                 continue;
             }
             // What the any-hit query's filter notes on the way, per lane.
-            let mut passage = [Passage::default(); 4];
+            let mut crossings = [ShadowCrossings::default(); 4];
             // Each lane's ray, prepared for shapes the lanes do not test, when first needed.
             let mut prepared: [Option<PreparedRay>; 4] = [None; 4];
             for (p, shape) in list.iter() {
@@ -330,8 +330,8 @@ impl Whitted<'_> {
                     }
                     continue;
                 }
-                for (l, passage) in passage.iter_mut().enumerate() {
-                    if hit & (1 << l) != 0 && passage.blocked_by(scene, surface, p) {
+                for (l, crossings) in crossings.iter_mut().enumerate() {
+                    if hit & (1 << l) != 0 && crossings.blocked_by(scene, surface, p) {
                         blocked |= 1 << l;
                         open &= !(1 << l);
                     }
@@ -340,7 +340,7 @@ impl Whitted<'_> {
             // Rays through transmissive surfaces that `transmittance`'s shortcut does not settle
             // walk their crossings one at a time, as there.
             for (l, a) in answer.iter_mut().enumerate() {
-                if open & (1 << l) != 0 && !passage[l].settled() {
+                if open & (1 << l) != 0 && !crossings[l].settled() {
                     *a = self.walk_crossings(spawn, lane(&target, l), surface);
                 }
             }
