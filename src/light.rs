@@ -196,6 +196,43 @@ impl Light {
         }
     }
 
+    /// Whether the light is a point: one position, no area, seen by no ray.
+    pub fn is_point(&self) -> bool {
+        matches!(self, Light::Point { .. })
+    }
+
+    /// The area the light emits from; `None` for a point light.
+    pub fn area(&self) -> Option<f32> {
+        match self {
+            Light::Point { .. } => None,
+            Light::Quad { area, .. } => Some(*area),
+            Light::Sphere { radius, .. } => Some(4.0 * std::f32::consts::PI * radius * radius),
+            Light::Triangles {
+                cumulative_area, ..
+            } => Some(cumulative_area.last().copied().unwrap_or(0.0)),
+        }
+    }
+
+    /// The side a path tracer sees the light's surface emit towards at `point`, whose normal is
+    /// `normal`: a sphere's outside, a quad's `facing`, else the side facing `centre` (the
+    /// scene's). `None` for a point light, which no ray meets.
+    pub fn emitting_side(&self, point: Vec3, normal: Vec3, centre: Vec3) -> Option<Vec3> {
+        Some(match self {
+            Light::Point { .. } => return None,
+            Light::Sphere { .. } => normal,
+            Light::Quad {
+                facing: Some(f), ..
+            } => *f,
+            Light::Quad { .. } | Light::Triangles { .. } => {
+                if normal.dot(centre - point) < 0.0 {
+                    -normal
+                } else {
+                    normal
+                }
+            }
+        })
+    }
+
     /// How many shadow rays this light takes per shading point.
     pub fn sample_count(&self) -> u32 {
         match self {

@@ -72,8 +72,8 @@ impl Best {
     }
 }
 
-/// Four entries of a leaf, 160 bytes: their primitives, each tagged with the block's [`Kind`],
-/// and their shapes as the block's kernel reads them (unused in a [`Kind::Other`] block).
+/// Four entries of a leaf, 160 bytes: their primitives, each tagged with the block's [`BlockKind`],
+/// and their shapes as the block's kernel reads them (unused in a [`BlockKind::Other`] block).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(16))]
 struct Block {
@@ -91,7 +91,7 @@ impl Block {
         shapes: [[glam::Vec4::ZERO; 3]; 3],
     };
 
-    fn new(kind: Kind, shapes: Rows, indices: &[u32]) -> Block {
+    fn new(kind: BlockKind, shapes: Rows, indices: &[u32]) -> Block {
         let entries = std::array::from_fn(|l| match indices[l] {
             PAD => PAD,
             p => p | (kind as u32) << KIND_SHIFT,
@@ -116,9 +116,9 @@ impl Block {
     /// test must decide.
     #[inline(always)]
     fn intersect(&self, r4: &Ray4, t_max: f32) -> Hits4 {
-        const TRIANGLE: u32 = Kind::Triangle as u32;
-        const SPHERE: u32 = Kind::Sphere as u32;
-        const OTHER: u32 = Kind::Other as u32;
+        const TRIANGLE: u32 = BlockKind::Triangle as u32;
+        const SPHERE: u32 = BlockKind::Sphere as u32;
+        const OTHER: u32 = BlockKind::Other as u32;
         match self.entries[0] >> KIND_SHIFT {
             TRIANGLE => triangle4::intersect_rows(&self.shapes, r4, t_max),
             SPHERE => Sphere4::from_rows(&self.shapes).intersect(r4, t_max),
@@ -152,17 +152,17 @@ pub(super) fn lanes(mut mask: u32) -> impl Iterator<Item = usize> {
 
 /// The kinds of primitive a leaf keeps apart, in their order there.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
+enum BlockKind {
     Triangle = 0,
     Sphere = 1,
     Other = 2,
 }
 
-fn kind(shape: &Shape) -> Kind {
+fn kind(shape: &Shape) -> BlockKind {
     match shape {
-        Shape::Triangle(_) => Kind::Triangle,
-        Shape::Sphere(_) => Kind::Sphere,
-        _ => Kind::Other,
+        Shape::Triangle(_) => BlockKind::Triangle,
+        Shape::Sphere(_) => BlockKind::Sphere,
+        _ => BlockKind::Other,
     }
 }
 
@@ -184,13 +184,17 @@ impl Leaves {
         debug_assert!(prims.len() <= MAX_PRIMITIVES);
         let spans: Vec<_> = spans.collect();
         // Each primitive's kind, found once (a primitive with no record is a mesh's triangle).
-        let kind_at: Vec<Kind> = order
+        let kind_at: Vec<BlockKind> = order
             .iter()
-            .map(|&p| prims.record(p).map_or(Kind::Triangle, |r| kind(&r.shape)))
+            .map(|&p| {
+                prims
+                    .record(p)
+                    .map_or(BlockKind::Triangle, |r| kind(&r.shape))
+            })
             .collect();
-        let kinds = [Kind::Triangle, Kind::Sphere, Kind::Other];
+        let kinds = [BlockKind::Triangle, BlockKind::Sphere, BlockKind::Other];
         // The positions in `order` of a leaf's primitives of kind `k`, in their order there.
-        let of_kind = |start: u32, count: u32, k: Kind| {
+        let of_kind = |start: u32, count: u32, k: BlockKind| {
             let kind_at = &kind_at;
             (start..start + count).filter(move |&j| kind_at[j as usize] == k)
         };
@@ -222,17 +226,17 @@ impl Leaves {
                     let lane: [Option<Shape>; 4] =
                         std::array::from_fn(|l| lanes.get(l).map(|&p| prims.shape(p).into_owned()));
                     let rows = match k {
-                        Kind::Triangle => Triangle4::new(lane.each_ref().map(|s| match s {
+                        BlockKind::Triangle => Triangle4::new(lane.each_ref().map(|s| match s {
                             Some(Shape::Triangle(t)) => Some(t),
                             _ => None,
                         }))
                         .rows(),
-                        Kind::Sphere => Sphere4::new(lane.each_ref().map(|s| match s {
+                        BlockKind::Sphere => Sphere4::new(lane.each_ref().map(|s| match s {
                             Some(Shape::Sphere(s)) => Some(s),
                             _ => None,
                         }))
                         .rows(),
-                        Kind::Other => Block::EMPTY.shapes,
+                        BlockKind::Other => Block::EMPTY.shapes,
                     };
                     lanes.resize(4, PAD);
                     blocks.push(Block::new(k, rows, &lanes));

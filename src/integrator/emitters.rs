@@ -84,35 +84,12 @@ impl Emitters {
                 if !surface.is_empty() {
                     shapes.push((surface, i as u32));
                 }
-                match light {
-                    Light::Point { .. } => power,
-                    Light::Quad {
-                        area,
-                        origin,
-                        edge_u,
-                        edge_v,
-                        normal,
-                        ..
-                    } => {
-                        let quad = Parallelogram::new(*origin, *edge_u, *edge_v, *normal);
-                        own_surfaces.push((i as u32, OwnSurface::Quad(quad)));
-                        power / *area
-                    }
-                    Light::Sphere {
-                        center,
-                        radius,
-                        surface,
-                        ..
-                    } => {
-                        if surface.is_empty() {
-                            let sphere = Sphere::new(*center, *radius, Vec3::Y, Vec3::X);
-                            own_surfaces.push((i as u32, OwnSurface::Sphere(sphere)));
-                        }
-                        power / (4.0 * PI * radius * radius)
-                    }
-                    Light::Triangles {
-                        cumulative_area, ..
-                    } => power / cumulative_area.last().copied().unwrap_or(0.0),
+                if let Some(own) = OwnSurface::of(light) {
+                    own_surfaces.push((i as u32, own));
+                }
+                match light.area() {
+                    None => power,
+                    Some(area) => power / area,
                 }
             })
             .collect();
@@ -140,19 +117,8 @@ impl Emitters {
         normal: Vec3,
         out: Vec3,
     ) -> Vec3 {
-        let side = match &lights[light] {
-            Light::Point { .. } => return Vec3::ZERO,
-            Light::Sphere { .. } => normal,
-            Light::Quad {
-                facing: Some(f), ..
-            } => *f,
-            Light::Quad { .. } | Light::Triangles { .. } => {
-                if normal.dot(self.centre - point) < 0.0 {
-                    -normal
-                } else {
-                    normal
-                }
-            }
+        let Some(side) = lights[light].emitting_side(point, normal, self.centre) else {
+            return Vec3::ZERO;
         };
         if side.dot(out) > 0.0 {
             self.emission[light]
@@ -210,6 +176,36 @@ impl Emitters {
 enum OwnSurface {
     Quad(Parallelogram),
     Sphere(Sphere),
+}
+
+impl OwnSurface {
+    /// The surface a ray can meet of a light that is not a scene shape: a quad light's
+    /// parallelogram and a sphere light's ball; `None` for the others.
+    fn of(light: &Light) -> Option<OwnSurface> {
+        match light {
+            Light::Quad {
+                origin,
+                edge_u,
+                edge_v,
+                normal,
+                ..
+            } => Some(OwnSurface::Quad(Parallelogram::new(
+                *origin, *edge_u, *edge_v, *normal,
+            ))),
+            Light::Sphere {
+                center,
+                radius,
+                surface,
+                ..
+            } if surface.is_empty() => Some(OwnSurface::Sphere(Sphere::new(
+                *center,
+                *radius,
+                Vec3::Y,
+                Vec3::X,
+            ))),
+            _ => None,
+        }
+    }
 }
 
 /// The parallelogram `origin + s·eu + t·ev` (`s, t ∈ [0, 1]`) with unit normal `n`.

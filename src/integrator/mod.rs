@@ -226,12 +226,13 @@ pub struct TraceOptions {
 impl TraceOptions {
     /// Shadow rays per shading point and their placement for `light`.
     pub fn light_plan(&self, light: &Light) -> (u32, Method) {
-        match light {
-            Light::Point { .. } => (1, light.method()),
-            Light::Quad { .. } | Light::Sphere { .. } | Light::Triangles { .. } => (
+        if light.is_point() {
+            (1, light.method())
+        } else {
+            (
                 self.light_samples.unwrap_or(light.sample_count()).max(1),
                 self.light_method.unwrap_or(light.method()),
-            ),
+            )
         }
     }
 }

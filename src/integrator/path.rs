@@ -241,9 +241,10 @@ impl<'a> PathTracer<'a> {
     /// averages over many vertices, and one sample each is what other path tracers take.
     #[inline]
     fn light_samples(&self, light: &Light) -> u32 {
-        match light {
-            Light::Point { .. } => 1,
-            _ => self.options.light_samples.unwrap_or(1).max(1),
+        if light.is_point() {
+            1
+        } else {
+            self.options.light_samples.unwrap_or(1).max(1)
         }
     }
 
@@ -273,9 +274,9 @@ impl<'a> PathTracer<'a> {
                 if f == Vec3::ZERO {
                     continue;
                 }
-                let arriving = match light {
-                    Light::Point { .. } => self.emitters.intensity(li) / d2,
-                    _ => {
+                let arriving = match light.is_point() {
+                    true => self.emitters.intensity(li) / d2,
+                    false => {
                         if !(s.pdf > 0.0 && s.pdf.is_finite()) {
                             continue;
                         }

@@ -14,8 +14,8 @@
 //! rays do not see it (like a quad light). A `shapeid` names a shape of the scene's `shapes` by its
 //! `id`: that shape stays a shape (camera rays see its material, and it shadows other lights), and
 //! it is also the light's surface, which its own shadow rays pass through. Shapes are read after
-//! lights, so a `shapeid` is only noted when its light is read ([`Emitters::want`]) and resolved
-//! once every shape is known ([`Emitters::resolve`]).
+//! lights, so a `shapeid` is only noted when its light is read ([`ShapeLights::want`]) and resolved
+//! once every shape is known ([`ShapeLights::resolve`]).
 //!
 //! Only flat shapes (`triangle`, `plane` and the other quad spellings) and spheres can emit: the
 //! samples of a flat shape or of a sphere's visible cap see the shading point directly, but a
@@ -95,13 +95,13 @@ struct Glowing {
 /// The `shapeid`s of the lights read so far, the ids of the shapes, and the shapes whose
 /// material emits.
 #[derive(Default)]
-pub(super) struct Emitters {
+pub(super) struct ShapeLights {
     wanted: Vec<Wanted>,
     shapes: Vec<Named>,
     glowing: Vec<Glowing>,
 }
 
-impl Emitters {
+impl ShapeLights {
     /// Notes that the light at index `light` (a placeholder for now) is the shape named by the
     /// string `shapeid`.
     pub(super) fn want(

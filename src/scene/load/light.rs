@@ -239,7 +239,7 @@ impl Loader<'_> {
             return self.shaped_area_light(l, &shape, intensity);
         } else if let Some(id) = l.get("shapeid") {
             let (samples, method) = self.area_sampling(l)?;
-            self.emitters
+            self.shape_lights
                 .want(self.lights.len(), &id, intensity, samples, method)?;
             // A placeholder, replaced once the shapes are read.
             self.lights.push(Light::Point {

@@ -27,7 +27,7 @@ use std::path::{Path, PathBuf};
 use super::error::{SceneError, Warning};
 use super::json::{Node, Source};
 use super::keys;
-use super::lights::Emitters;
+use super::lights::ShapeLights;
 use super::{RenderMode, Scene, Variant};
 use crate::files::input::{self, SizeLimit};
 use crate::files::raise_hint;
@@ -163,7 +163,7 @@ pub fn load_str(text: &str, path: &Path, options: &LoadOptions) -> Result<Scene,
         ambient: None,
         variant: Variant::V2021,
         mode: RenderMode::Phong,
-        emitters: Emitters::default(),
+        shape_lights: ShapeLights::default(),
         method: None,
         triangles: 0,
         inputs: Vec::new(),
@@ -191,7 +191,7 @@ struct Loader<'o> {
     /// top-level `sampling`).
     method: Option<Method>,
     /// Area lights whose surface is a shape of the scene, resolved after the shapes are read.
-    emitters: Emitters,
+    shape_lights: ShapeLights,
     triangles: usize,
     inputs: Vec<PathBuf>,
 }
@@ -387,7 +387,7 @@ impl Loader<'_> {
                 self.listed_shape(&s, &mut libraries)?;
             }
         }
-        std::mem::take(&mut self.emitters).resolve(
+        std::mem::take(&mut self.shape_lights).resolve(
             &mut self.lights,
             &self.primitives,
             &mut self.warnings,
@@ -405,12 +405,13 @@ impl Loader<'_> {
     fn listed_shape(&mut self, s: &Node, libraries: &mut Libraries) -> Result<(), SceneError> {
         let first = self.primitives.len();
         self.shape(s, self.mode, libraries)?;
-        self.emitters.note_shape(s, first..self.primitives.len());
+        self.shape_lights
+            .note_shape(s, first..self.primitives.len());
         if first < self.primitives.len() {
             let material = self.primitives.material(first as u32);
             let emission = self.materials[material as usize].emission;
             if emission.max_element() > 0.0 {
-                self.emitters
+                self.shape_lights
                     .note_glowing(s, first..self.primitives.len(), emission);
             }
         }
