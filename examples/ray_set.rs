@@ -50,6 +50,7 @@ fn trace_any(accel: &Accel, prims: &Primitives, rays: &[(Ray, f32)]) -> usize {
         .count()
 }
 
+/// The command line, for errors.
 const USAGE: &str = "usage: ray_set 4|16 sah|sah4|sah8|sah8-baseline primary|shadow|incoherent";
 
 /// Leaves with `why` (if any) and the usage line, status 2.
@@ -61,6 +62,7 @@ fn usage(why: &str) -> ! {
     std::process::exit(2)
 }
 
+/// Builds the grid and the tree, traces the chosen set once and prints the count.
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let [grid, tree, set] = args.as_slice() else {

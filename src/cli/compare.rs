@@ -53,6 +53,7 @@ pub(super) fn try_parse(args: &[std::ffi::OsString]) -> Result<(), clap::Error> 
     <CompareCli as Parser>::try_parse_from(args).map(drop)
 }
 
+/// Runs `raytracer compare` (`args` start with the subcommand's name) and returns its exit status.
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     let cli = match exit_code::parse::<CompareCli>(args) {
         Ok(c) => c,

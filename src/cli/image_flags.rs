@@ -83,7 +83,7 @@ pub(crate) struct ImageFlags {
     /// Integrator: whitted (ray trees with Blinn-Phong direct light) or path (path tracing with
     /// next-event estimation and MIS). Default: the scene's rendermode (pathtrace → path).
     #[arg(long)]
-    pub integrator: Option<raytracer::integrator::Kind>,
+    pub integrator: Option<raytracer::integrator::IntegratorKind>,
 }
 
 impl ImageFlags {
@@ -111,11 +111,11 @@ impl ImageFlags {
             (None, Some(_)) => Some(TIME_LIMIT_SPP),
             (spp, _) => spp,
         };
-        let integrator = raytracer::integrator::Kind::chosen(self.integrator, scene);
+        let integrator = raytracer::integrator::IntegratorKind::chosen(self.integrator, scene);
         // The path tracer's own dimensions are Sobol; its pixel and lens samples follow.
         let default_method = match (adaptive, integrator) {
-            (Some(_), _) | (None, raytracer::integrator::Kind::Path) => Method::Sobol,
-            (None, raytracer::integrator::Kind::Whitted) => Method::Jittered,
+            (Some(_), _) | (None, raytracer::integrator::IntegratorKind::Path) => Method::Sobol,
+            (None, raytracer::integrator::IntegratorKind::Whitted) => Method::Jittered,
         };
         RenderOptions {
             spp: spp_cap.or(scene.pixel_samples).unwrap_or(1),

@@ -19,6 +19,7 @@ use raytracer::files::output::{OutputError, PendingFile};
 /// How long a signalled command may take to stop by itself before it is ended.
 pub const GRACE: Duration = Duration::from_millis(50);
 
+/// What the command is doing, which decides what the handler may do.
 #[derive(Debug)]
 enum Phase {
     /// Reading, building or rendering; the temporary outputs created so far.
@@ -50,6 +51,8 @@ impl Interrupt {
         interrupt
     }
 
+    /// Sets the flag; if the command has not stopped within [`GRACE`] and is not writing its
+    /// output, removes the temporary outputs and ends the process.
     fn on_signal(&self) {
         self.flag.store(true, Ordering::Relaxed);
         std::thread::sleep(GRACE);

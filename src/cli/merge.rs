@@ -45,6 +45,7 @@ struct MergeCli {
     quiet: bool,
 }
 
+/// What an interrupted merge did not write.
 const NOT_WRITTEN: &str = "no image written";
 
 /// Parses the subcommand's command line without running it.
@@ -52,6 +53,7 @@ pub(super) fn try_parse(args: &[std::ffi::OsString]) -> Result<(), clap::Error> 
     <MergeCli as Parser>::try_parse_from(args).map(drop)
 }
 
+/// Runs `raytracer merge` (`args` start with the subcommand's name) and returns its exit status.
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     let cli = match exit_code::parse::<MergeCli>(args) {
         Ok(c) => c,
@@ -64,6 +66,7 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     }
 }
 
+/// Reads the tiles, assembles them and writes the image.
 fn run(cli: &MergeCli, interrupt: &Interrupt) -> Result<(), Failure> {
     if OutputFormat::from_path(&cli.output).is_none() {
         return Err(Failure::Usage(format!(

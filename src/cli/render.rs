@@ -1,18 +1,18 @@
 //! `raytracer SCENE OUT`: render a scene to an image.
 
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Parser;
 
-use raytracer::files::output::Outputs;
+use raytracer::files::output::{Outputs, PendingFile};
 use raytracer::files::shown;
-use raytracer::film::{PixelRect, ToneMap};
+use raytracer::film::{Film, PixelRect, ToneMap};
 use raytracer::image_io::{encode_image, OutputFormat};
 use raytracer::parts::{self, Part};
-use raytracer::render::{render, RenderError, RenderOptions};
-use raytracer::scene::{load, LoadOptions};
+use raytracer::render::{render, RenderError, RenderOptions, RenderOutput};
+use raytracer::scene::{load, LoadOptions, Scene};
 
 use super::exit_code::{self, Failure};
 use super::image_flags::ImageFlags;
@@ -29,7 +29,7 @@ use super::values;
                   Inputs must be regular files (not FIFOs or devices); the image is written atomically and never onto the scene, a texture or a mesh it uses.\n\
                   Image comparison: raytracer compare --help. Many scenes at once: raytracer batch --help. Benchmarks: raytracer bench --help."
 )]
-struct Cli {
+struct RenderCli {
     /// The scene file (JSON; comments and trailing commas allowed).
     scene: PathBuf,
     /// The image to write: .ppm, .png or .exr.
@@ -112,8 +112,9 @@ struct Cli {
 /// What an interrupted render did not write.
 const NOT_WRITTEN: &str = "no image written";
 
+/// Runs `raytracer SCENE OUT` (`args` start with the program's name) and returns its exit status.
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
-    let cli = match exit_code::parse::<Cli>(args) {
+    let cli = match exit_code::parse::<RenderCli>(args) {
         Ok(c) => c,
         Err(code) => return code,
     };
@@ -126,10 +127,54 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
 
 /// Parses a render command line without running it.
 pub(super) fn try_parse(args: &[std::ffi::OsString]) -> Result<(), clap::Error> {
-    <Cli as Parser>::try_parse_from(args).map(drop)
+    <RenderCli as Parser>::try_parse_from(args).map(drop)
 }
 
-fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
+/// Checks the flags, loads the scene, renders it on the `--threads` pool and writes the image
+/// (and the `--sample-map`).
+fn run(cli: &RenderCli, interrupt: &Interrupt) -> Result<(), Failure> {
+    let part = check_output(cli)?;
+    let scene = load_scene(cli)?;
+    let (pending, pending_map) = create_outputs(cli, &scene, interrupt)?;
+    if interrupt.is_set() {
+        return Err(Failure::Interrupted(NOT_WRITTEN));
+    }
+    let options = RenderOptions {
+        progress: !cli.quiet && std::io::stderr().is_terminal(),
+        cancel: Some(interrupt.flag()),
+        crop: crop(cli, &scene)?,
+        samples: cli.sample_range.clone(),
+        keep_sums: part,
+        ..cli.image.render_options(&scene)
+    };
+    let fingerprint = if part {
+        parts::fingerprint(&scene, &options).map_err(|e| Failure::Input(e.to_string()))?
+    } else {
+        0
+    };
+    let mut out = render_on_pool(cli, &scene, &options)?;
+    if out.cancelled || interrupt.is_set() {
+        return Err(Failure::Interrupted(NOT_WRITTEN));
+    }
+    let bytes = encode(cli, &scene, &options, fingerprint, &mut out)?;
+    if let (Some(pending_map), Some(counts), Some(path)) =
+        (pending_map, &out.sample_counts, &cli.sample_map)
+    {
+        let map = sample_map(counts, options.spp, &out.film);
+        let map_bytes = encode_image(path, &map, ToneMap::Linear, 1.0)
+            .map_err(|e| Failure::Input(e.to_string()))?;
+        interrupt.commit(pending_map, &map_bytes)?;
+    }
+    interrupt.commit(pending, &bytes)?;
+    if !cli.quiet {
+        eprintln!("{}", summary(&cli.output, &out, options.spp));
+    }
+    Ok(())
+}
+
+/// Checks that the output's format is known, and is EXR for a part of a render (`--crop`,
+/// `--tile`, `--sample-range`); whether it is such a part.
+fn check_output(cli: &RenderCli) -> Result<bool, Failure> {
     if OutputFormat::from_path(&cli.output).is_none() {
         return Err(Failure::Usage(format!(
             "cannot tell the image format of '{}': use .ppm, .png or .exr",
@@ -143,7 +188,12 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
             shown(&cli.output)
         )));
     }
-    // The scene file first, before reading it; then every texture and mesh it names.
+    Ok(part)
+}
+
+/// Loads the scene within the flags' limits, once the output is known not to be the scene file,
+/// and shows its warnings (errors with `--strict`).
+fn load_scene(cli: &RenderCli) -> Result<Scene, Failure> {
     Outputs::from_inputs([cli.scene.as_path()]).claim(&cli.output)?;
     let load_options = LoadOptions {
         width: cli.width,
@@ -167,6 +217,17 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
             eprintln!("warning: {w}");
         }
     }
+    Ok(scene)
+}
+
+/// Claims the image and the `--sample-map` against every file the scene reads, and creates them
+/// now, so that a folder that cannot be written is reported before the render; each is removed
+/// unless its finished bytes are committed.
+fn create_outputs(
+    cli: &RenderCli,
+    scene: &Scene,
+    interrupt: &Interrupt,
+) -> Result<(PendingFile, Option<PendingFile>), Failure> {
     let mut outputs = Outputs::from_inputs(scene.inputs.iter().map(PathBuf::as_path));
     outputs.claim(&cli.output)?;
     if let Some(map) = &cli.sample_map {
@@ -178,33 +239,22 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
         }
         outputs.claim(map)?;
     }
-    // Created now, so a folder that cannot be written is reported before the render; removed
-    // unless the finished image is committed.
     let pending = interrupt.create(&cli.output)?;
     let pending_map = match &cli.sample_map {
         Some(map) => Some(interrupt.create(map)?),
         None => None,
     };
-    if interrupt.is_set() {
-        return Err(Failure::Interrupted(NOT_WRITTEN));
-    }
-    let flags = &cli.image;
-    let options = RenderOptions {
-        progress: !cli.quiet && std::io::stderr().is_terminal(),
-        cancel: Some(interrupt.flag()),
-        crop: crop(cli, &scene)?,
-        samples: cli.sample_range.clone(),
-        keep_sums: part,
-        ..flags.render_options(&scene)
-    };
-    let fingerprint = if part {
-        parts::fingerprint(&scene, &options).map_err(|e| Failure::Input(e.to_string()))?
-    } else {
-        0
-    };
+    Ok((pending, pending_map))
+}
+
+/// Renders `scene` on the `--threads` pool.
+fn render_on_pool(
+    cli: &RenderCli,
+    scene: &Scene,
+    options: &RenderOptions,
+) -> Result<RenderOutput, Failure> {
     let pool = values::thread_pool(cli.threads).map_err(Failure::Input)?;
-    let mut out = pool
-        .install(|| render(&scene, &options))
+    pool.install(|| render(scene, options))
         .map_err(|e| match e {
             // The render checks the crop and range against the scene: the flags' fault.
             RenderError::CropOutside { .. } => Failure::Usage(format!("--crop: {e}")),
@@ -212,61 +262,66 @@ fn run(cli: &Cli, interrupt: &Interrupt) -> Result<(), Failure> {
                 "--sample-range: {e} (--spp is the whole render's count)"
             )),
             _ => Failure::Input(e.to_string()),
-        })?;
-    if out.cancelled || interrupt.is_set() {
-        return Err(Failure::Interrupted(NOT_WRITTEN));
-    }
-    let bytes = match Part::of_render(&scene, &options, fingerprint, &mut out) {
+        })
+}
+
+/// The output's bytes: an EXR tile for `raytracer merge` when the render kept its sums, else the
+/// image, tone-mapped as the flags and the scene say.
+fn encode(
+    cli: &RenderCli,
+    scene: &Scene,
+    options: &RenderOptions,
+    fingerprint: u64,
+    out: &mut RenderOutput,
+) -> Result<Vec<u8>, Failure> {
+    match Part::of_render(scene, options, fingerprint, out) {
         Some(part) => parts::exr::encode(&part).map_err(|e| {
             Failure::Input(format!(
                 "{}: cannot encode the tile: {e}",
                 shown(&cli.output)
             ))
-        })?,
+        }),
         None => {
-            let exposure = flags.display_exposure(&scene);
-            encode_image(&cli.output, &out.film, flags.tone_map(&scene), exposure)
-                .map_err(|e| Failure::Input(e.to_string()))?
+            let exposure = cli.image.display_exposure(scene);
+            encode_image(&cli.output, &out.film, cli.image.tone_map(scene), exposure)
+                .map_err(|e| Failure::Input(e.to_string()))
         }
-    };
-    if let (Some(pending_map), Some(counts), Some(path)) =
-        (pending_map, &out.sample_counts, &cli.sample_map)
-    {
-        let spp = options.spp.max(1) as f32;
-        let share: Vec<f32> = counts.iter().map(|&k| k as f32 / spp).collect();
-        let map = raytracer::metric::heat_map(out.film.width, out.film.height, &share);
-        let map_bytes = encode_image(path, &map, ToneMap::Linear, 1.0)
-            .map_err(|e| Failure::Input(e.to_string()))?;
-        interrupt.commit(pending_map, &map_bytes)?;
     }
-    interrupt.commit(pending, &bytes)?;
-    if !cli.quiet {
-        let secs = out.render_time.as_secs_f64();
-        let rays = out.counts.total();
-        eprintln!(
-            "{}: {}×{}, {}, {:.3} s (build {:.3} s), {} rays, {:.2} Mrays/s",
-            shown(&cli.output),
-            out.film.width,
-            out.film.height,
-            match &out.sample_counts {
-                Some(counts) => format!(
-                    "{:.1} spp on average (at most {})",
-                    counts.iter().map(|&k| f64::from(k)).sum::<f64>() / counts.len().max(1) as f64,
-                    options.spp
-                ),
-                None => format!("{} spp", options.spp),
-            },
-            secs,
-            out.build_time.as_secs_f64(),
-            rays,
-            rays as f64 / secs.max(1e-9) / 1e6
-        );
-    }
-    Ok(())
+}
+
+/// The `--sample-map` picture of `film`: each pixel's samples (`counts`) over `spp`, as a heat map.
+fn sample_map(counts: &[u32], spp: u32, film: &Film) -> Film {
+    let spp = spp.max(1) as f32;
+    let share: Vec<f32> = counts.iter().map(|&k| k as f32 / spp).collect();
+    raytracer::metric::heat_map(film.width, film.height, &share)
+}
+
+/// The line a finished render prints: the image, its size, samples, times, rays and Mrays/s.
+fn summary(output: &Path, out: &RenderOutput, spp: u32) -> String {
+    let secs = out.render_time.as_secs_f64();
+    let rays = out.counts.total();
+    format!(
+        "{}: {}×{}, {}, {:.3} s (build {:.3} s), {} rays, {:.2} Mrays/s",
+        shown(output),
+        out.film.width,
+        out.film.height,
+        match &out.sample_counts {
+            Some(counts) => format!(
+                "{:.1} spp on average (at most {})",
+                counts.iter().map(|&k| f64::from(k)).sum::<f64>() / counts.len().max(1) as f64,
+                spp
+            ),
+            None => format!("{spp} spp"),
+        },
+        secs,
+        out.build_time.as_secs_f64(),
+        rays,
+        rays as f64 / secs.max(1e-9) / 1e6
+    )
 }
 
 /// The pixels to render: `--crop`, or the `--tile` cell of the `--tiles` grid.
-fn crop(cli: &Cli, scene: &raytracer::scene::Scene) -> Result<Option<PixelRect>, Failure> {
+fn crop(cli: &RenderCli, scene: &Scene) -> Result<Option<PixelRect>, Failure> {
     let size = (scene.camera.width, scene.camera.height);
     match (cli.tile, cli.tiles) {
         (Some(cell), Some(grid)) => PixelRect::grid_cell(size, cell, grid).map(Some).ok_or_else(|| {

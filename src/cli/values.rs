@@ -2,6 +2,7 @@
 //! checked as its twin in a scene file is: finite, and in the range its meaning allows (NaN is
 //! never accepted).
 
+/// `text` as a number of type `T`, or a message quoting it.
 fn number<T: std::str::FromStr>(text: &str) -> Result<T, String> {
     text.parse()
         .map_err(|_| format!("'{text}' is not a number"))

@@ -1,5 +1,6 @@
 //! Which scenes a batch renders, and what their outputs and reference images are called: the
-//! command line's files and folders, one unique output name per scene, the reference beside it.
+//! command line's files and folders, one unique output name per scene, and the reference image
+//! found for that name.
 
 use std::collections::HashSet;
 use std::path::{Component, Path, PathBuf};
@@ -20,6 +21,7 @@ pub struct Source {
     pub error: Option<String>,
 }
 
+/// Whether `path` ends in `.json` (without regard to case).
 fn is_json(path: &Path) -> bool {
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("json"))
@@ -68,6 +70,8 @@ pub fn collect_scenes(args: &[PathBuf], skip: &[PathBuf]) -> Vec<Source> {
     out
 }
 
+/// Adds the `.json` files under `dir` to `out`, recursively, except what `skip` holds and folders
+/// already `visited`; a folder that cannot be listed is added as a failed entry.
 fn walk(
     dir: &Path,
     skip: &HashSet<PathBuf>,

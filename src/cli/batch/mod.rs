@@ -1,6 +1,6 @@
 //! `raytracer batch SCENES... --out DIR`: many scenes in one process, each image written as
 //! `raytracer SCENE OUT` writes it, with a summary, optional comparison against reference
-//! images and an HTML report (`crate::batch`, `docs/batch.md`).
+//! images and an HTML report (`docs/batch.md`).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -16,7 +16,7 @@ mod summary;
 
 use raytracer::files::output::{OutputError, Outputs, PendingFile};
 use raytracer::files::shown;
-use run::{ImagePlan, Row, RunOptions, Status};
+use run::{ImagePlan, Job, RunOptions, SceneRow, Status};
 use summary::{SummaryFormat, Totals};
 
 use raytracer::image_io::OutputFormat;
@@ -130,6 +130,7 @@ impl BatchCli {
 /// What an interrupted batch did not write.
 const NOT_WRITTEN: &str = "the images finished so far are kept; no summary or report written";
 
+/// Runs `raytracer batch` (`args` start with the subcommand's name) and returns its exit status.
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     let cli = match exit_code::parse::<BatchCli>(args) {
         Ok(c) => c,
@@ -166,28 +167,61 @@ impl run::Writer for Serial<'_> {
     }
 }
 
+/// Whether `path` ends in one of `extensions` (without regard to case).
 fn has_extension(path: &Path, extensions: &[&str]) -> bool {
     path.extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| extensions.iter().any(|x| e.eq_ignore_ascii_case(x)))
 }
 
+/// Where the batch's summary and report go, and the summary's format.
+struct Destinations {
+    summary: PathBuf,
+    summary_format: SummaryFormat,
+    report: Option<PathBuf>,
+}
+
+/// The summary and the report, created and waiting for their bytes.
+struct PendingResults {
+    summary: PendingFile,
+    report: Option<PendingFile>,
+}
+
+/// Checks the flags and folders, renders every scene, and writes the summary and the report.
 fn run(cli: &BatchCli, interrupt: &Interrupt) -> Result<Totals, Failure> {
-    let summary_path = cli
+    let destinations = destinations(cli)?;
+    prepare_folders(cli)?;
+    let jobs = plan_jobs(cli)?;
+    let pending = create_results(&jobs, &destinations, interrupt)?;
+    let rows = render_jobs(cli, &jobs, destinations.report.is_some(), interrupt)?;
+    if interrupt.is_set() {
+        return Err(Failure::Interrupted(NOT_WRITTEN));
+    }
+    write_results(cli, &rows, &destinations, pending, interrupt)?;
+    let totals = Totals::of(&rows);
+    if !cli.quiet {
+        eprintln!("{}", totals_line(cli, &totals, &destinations));
+    }
+    Ok(totals)
+}
+
+/// The summary's path and format and the report's path (by default beside the images), checked.
+fn destinations(cli: &BatchCli) -> Result<Destinations, Failure> {
+    let summary = cli
         .summary
         .clone()
         .unwrap_or_else(|| cli.out.join("summary.csv"));
-    let summary_format = SummaryFormat::from_path(&summary_path).ok_or_else(|| {
+    let summary_format = SummaryFormat::from_path(&summary).ok_or_else(|| {
         Failure::Usage(format!(
             "cannot tell the summary format of '{}': use .csv or .json",
-            shown(&summary_path)
+            shown(&summary)
         ))
     })?;
-    let report_path = cli
+    let report = cli
         .report
         .clone()
         .or_else(|| cli.reference.as_ref().map(|_| cli.out.join("report.html")));
-    if let Some(path) = &report_path {
+    if let Some(path) = &report {
         if !has_extension(path, &["html", "htm"]) {
             return Err(Failure::Usage(format!(
                 "the report '{}' must be an .html file",
@@ -195,6 +229,15 @@ fn run(cli: &BatchCli, interrupt: &Interrupt) -> Result<Totals, Failure> {
             )));
         }
     }
+    Ok(Destinations {
+        summary,
+        summary_format,
+        report,
+    })
+}
+
+/// Checks the reference folder, creates the output folder, and refuses the two being one.
+fn prepare_folders(cli: &BatchCli) -> Result<(), Failure> {
     if let Some(dir) = &cli.reference {
         if !dir.is_dir() {
             return Err(Failure::Usage(format!(
@@ -217,8 +260,13 @@ fn run(cli: &BatchCli, interrupt: &Interrupt) -> Result<Totals, Failure> {
             )));
         }
     }
+    Ok(())
+}
+
+/// The scenes the command line names, with their outputs and references.
+fn plan_jobs(cli: &BatchCli) -> Result<Vec<Job>, Failure> {
     // Not the output folder (its summary.json, from an earlier run). A summary given inside a
-    // scene folder stays a scene, and writing over it is refused below.
+    // scene folder stays a scene, and writing over it is refused when it is claimed.
     let sources = discover::collect_scenes(&cli.scenes, std::slice::from_ref(&cli.out));
     if sources.is_empty() {
         return Err(Failure::Usage(
@@ -226,25 +274,47 @@ fn run(cli: &BatchCli, interrupt: &Interrupt) -> Result<Totals, Failure> {
         ));
     }
     let format = OutputFormat::from(cli.format);
-    let jobs = run::plan(&sources, &cli.out, format, cli.reference.as_deref());
+    Ok(run::plan(
+        &sources,
+        &cli.out,
+        format,
+        cli.reference.as_deref(),
+    ))
+}
 
-    // The summary and the report: never a scene or a reference; their folders are checked now.
+/// Claims and creates the summary and the report before any scene is rendered: never a scene or
+/// a reference, and their folders checked now.
+fn create_results(
+    jobs: &[Job],
+    destinations: &Destinations,
+    interrupt: &Interrupt,
+) -> Result<PendingResults, Failure> {
     let mut guard = Outputs::from_inputs(jobs.iter().map(|j| j.scene.as_path()));
-    for job in &jobs {
+    for job in jobs {
         if let Some(Ok(reference)) = &job.reference {
             guard.input(reference);
         }
     }
-    guard.claim(&summary_path)?;
-    let summary_pending = interrupt.create(&summary_path)?;
-    let report_pending = match &report_path {
+    guard.claim(&destinations.summary)?;
+    let summary = interrupt.create(&destinations.summary)?;
+    let report = match &destinations.report {
         Some(path) => {
             guard.claim(path)?;
             Some(interrupt.create(path)?)
         }
         None => None,
     };
+    Ok(PendingResults { summary, report })
+}
 
+/// Renders the jobs on the `--threads` pool, showing each scene as it finishes; `keep_images`
+/// keeps the PNGs the report shows.
+fn render_jobs(
+    cli: &BatchCli,
+    jobs: &[Job],
+    keep_images: bool,
+    interrupt: &Interrupt,
+) -> Result<Vec<SceneRow>, Failure> {
     let flags = &cli.image;
     let plan = |scene: &raytracer::scene::Scene| ImagePlan {
         render: flags.render_options(scene),
@@ -261,7 +331,7 @@ fn run(cli: &BatchCli, interrupt: &Interrupt) -> Result<Totals, Failure> {
         },
         plan: &plan,
         max_flip: cli.max_flip,
-        keep_images: report_path.is_some(),
+        keep_images,
         cancel: interrupt.flag(),
     };
     let writer = Serial {
@@ -269,66 +339,78 @@ fn run(cli: &BatchCli, interrupt: &Interrupt) -> Result<Totals, Failure> {
         lock: Mutex::new(()),
     };
     let finished = AtomicUsize::new(0);
-    let total = jobs.len();
-    let done = |row: &Row| {
+    let done = |row: &SceneRow| {
         let k = finished.fetch_add(1, Ordering::Relaxed) + 1;
-        if interrupt.is_set() {
-            return;
-        }
-        if !cli.quiet {
-            for w in &row.warnings {
-                eprintln!("warning: {w}");
-            }
-        }
-        if row.status != Status::Ok {
-            if let Some(line) = row.error_line() {
-                eprintln!("error: {line}");
-            }
-        } else if !cli.quiet {
-            eprintln!("[{k}/{total}] {}", describe(row));
+        if !interrupt.is_set() {
+            show_row(cli, row, k, jobs.len());
         }
     };
     let pool = values::thread_pool(cli.threads).map_err(Failure::Input)?;
-    let rows = pool.install(|| run::run(&jobs, &options, &writer, &done));
-    if interrupt.is_set() {
-        return Err(Failure::Interrupted(NOT_WRITTEN));
-    }
+    Ok(pool.install(|| run::render_all(jobs, &options, &writer, &done)))
+}
 
-    let summary = summary_format.write(&rows, cli.reference.is_some());
-    interrupt.commit(summary_pending, summary.as_bytes())?;
-    if let (Some(pending), Some(_)) = (report_pending, &report_path) {
+/// Prints a finished scene, the `k`th of `total`: its warnings and error, or its line.
+fn show_row(cli: &BatchCli, row: &SceneRow, k: usize, total: usize) {
+    if !cli.quiet {
+        for w in &row.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
+    if row.status != Status::Ok {
+        if let Some(line) = row.error_line() {
+            eprintln!("error: {line}");
+        }
+    } else if !cli.quiet {
+        eprintln!("[{k}/{total}] {}", describe(row));
+    }
+}
+
+/// Writes the summary and, if one is wanted, the report.
+fn write_results(
+    cli: &BatchCli,
+    rows: &[SceneRow],
+    destinations: &Destinations,
+    pending: PendingResults,
+    interrupt: &Interrupt,
+) -> Result<(), Failure> {
+    let summary = destinations
+        .summary_format
+        .write(rows, cli.reference.is_some());
+    interrupt.commit(pending.summary, summary.as_bytes())?;
+    if let (Some(pending), Some(_)) = (pending.report, &destinations.report) {
         let info = report::ReportInfo {
             reference_dir: cli.reference.clone(),
             max_flip: cli.max_flip,
             settings: cli.settings(),
         };
-        let page = report::html(&rows, &info);
+        let page = report::html(rows, &info);
         interrupt.commit(pending, page.as_bytes())?;
     }
-    let totals = Totals::of(&rows);
-    if !cli.quiet {
-        let mut line = format!(
-            "{} scene{}: {} ok, {} failed",
-            totals.scenes,
-            if totals.scenes == 1 { "" } else { "s" },
-            totals.ok,
-            totals.failed
-        );
-        if cli.max_flip.is_some() {
-            line.push_str(&format!(", {} over --max-flip", totals.over_threshold));
-        }
-        line.push_str(&format!("; summary {}", shown(&summary_path)));
-        if let Some(path) = &report_path {
-            line.push_str(&format!(", report {}", shown(path)));
-        }
-        eprintln!("{line}");
+    Ok(())
+}
+
+/// The batch's last line: scenes by how they ended, and where the summary and report are.
+fn totals_line(cli: &BatchCli, totals: &Totals, destinations: &Destinations) -> String {
+    let mut line = format!(
+        "{} scene{}: {} ok, {} failed",
+        totals.scenes,
+        if totals.scenes == 1 { "" } else { "s" },
+        totals.ok,
+        totals.failed
+    );
+    if cli.max_flip.is_some() {
+        line.push_str(&format!(", {} over --max-flip", totals.over_threshold));
     }
-    Ok(totals)
+    line.push_str(&format!("; summary {}", shown(&destinations.summary)));
+    if let Some(path) = &destinations.report {
+        line.push_str(&format!(", report {}", shown(path)));
+    }
+    line
 }
 
 /// A finished scene in a line: where its image went, its size, samples, time and rays, and its
 /// comparison.
-fn describe(row: &Row) -> String {
+fn describe(row: &SceneRow) -> String {
     let mut line = format!("{}", shown(&row.scene));
     if let Some(out) = &row.output {
         line.push_str(&format!(" → {}", shown(out)));

@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::run::{Row, Status};
+use super::run::{SceneRow, Status};
 use super::summary::Totals;
 
 /// What the page says about the batch as a whole.
@@ -35,6 +35,7 @@ pub fn escape(text: &str) -> String {
     out
 }
 
+/// A path as [`escape`]d text (lossy where it is not Unicode).
 fn escape_path(p: &Path) -> String {
     escape(&p.to_string_lossy())
 }
@@ -75,7 +76,7 @@ fn grouped(n: u64) -> String {
 }
 
 /// The label and CSS class of a row's status.
-fn label(row: &Row, judged: bool) -> (&'static str, &'static str) {
+fn label(row: &SceneRow, judged: bool) -> (&'static str, &'static str) {
     match row.status {
         Status::Failed => ("failed", "failed"),
         Status::OverThreshold => ("over threshold", "over"),
@@ -84,6 +85,7 @@ fn label(row: &Row, judged: bool) -> (&'static str, &'static str) {
     }
 }
 
+/// The page's style sheet.
 const STYLE: &str = r#"
 :root { --bg: #f4f5f7; --card: #fff; --ink: #1d2330; --muted: #5d6675; --line: #dde1e7;
         --ok: #1f7a3d; --ok-bg: #e3f4e8; --over: #8a5300; --over-bg: #fff0d6;
@@ -141,6 +143,7 @@ figcaption { color: var(--muted); font-size: 12px; margin-top: 3px; }
 #zoom img { width: 92vw; height: 92vh; object-fit: contain; image-rendering: pixelated; }
 "#;
 
+/// The page's script: a click on an image shows it full size, a click or Escape closes it.
 const SCRIPT: &str = r#"
 document.addEventListener('click', function (e) {
   var zoom = document.getElementById('zoom');
@@ -159,6 +162,8 @@ document.addEventListener('keydown', function (e) {
 /// Images narrower than this are drawn with square pixels when scaled up.
 const SMALL: u32 = 340;
 
+/// An image (`png`, inline) with its caption, or a box saying it is `missing`; `width` is the
+/// image's, for small images' square pixels.
 fn figure(out: &mut String, png: Option<&[u8]>, caption: &str, missing: &str, width: Option<u32>) {
     out.push_str("<figure>");
     match png {
@@ -181,14 +186,17 @@ fn figure(out: &mut String, png: Option<&[u8]>, caption: &str, missing: &str, wi
     let _ = write!(out, "<figcaption>{caption}</figcaption></figure>");
 }
 
-fn figure_row(out: &mut String, name: &str, value: &str) {
+/// A row of a card's table: `name` and its `value`.
+fn info_row(out: &mut String, name: &str, value: &str) {
     let _ = write!(
         out,
         "<tr><td>{name}</td><td class=\"num\">{value}</td></tr>"
     );
 }
 
-fn card(out: &mut String, row: &Row, info: &ReportInfo) {
+/// A scene's card: its status, name and path, its facts, its error and warnings, and its
+/// images.
+fn card(out: &mut String, row: &SceneRow, info: &ReportInfo) {
     let judged = info.max_flip.is_some();
     let (text, class) = label(row, judged);
     let _ = write!(
@@ -198,34 +206,7 @@ fn card(out: &mut String, row: &Row, info: &ReportInfo) {
         escape(&row.name),
         escape_path(&row.scene)
     );
-    if let Some(c) = &row.comparison {
-        let number = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map(f).unwrap_or("–".into());
-        figure_row(out, "MSE", &number(c.mse, &|m| format!("{m:.3e}")));
-        let flip = number(c.flip, &|f| format!("{f:.4}"));
-        let flip = match info.max_flip {
-            Some(max) => format!("{flip} (max {max})"),
-            None => flip,
-        };
-        figure_row(out, "mean FLIP", &flip);
-    }
-    if let (Some(w), Some(h)) = (row.width, row.height) {
-        figure_row(out, "size", &format!("{w}×{h}"));
-    }
-    if let Some(spp) = row.spp {
-        figure_row(out, "spp", &spp.to_string());
-    }
-    if let Some(s) = row.seconds {
-        figure_row(out, "time", &format!("{s:.3} s"));
-    }
-    if let Some(rays) = row.rays {
-        figure_row(out, "rays", &grouped(rays));
-    }
-    if let Some(output) = &row.output {
-        figure_row(out, "image", &escape_path(output));
-    }
-    if let Some(Some(reference)) = row.comparison.as_ref().map(|c| c.reference.as_ref()) {
-        figure_row(out, "reference", &escape_path(reference));
-    }
+    facts(out, row, info);
     out.push_str("</table>");
     if let Some(error) = &row.error {
         let _ = write!(out, "<p class=\"error\">{}</p>", escape(error));
@@ -240,6 +221,45 @@ fn card(out: &mut String, row: &Row, info: &ReportInfo) {
         out.push_str("</ul></details>");
     }
     out.push_str("</div><div class=\"images\">");
+    images(out, row);
+    out.push_str("</div></article>\n");
+}
+
+/// The rows of a card's table: the comparison's metrics, size, samples, time, rays and files.
+fn facts(out: &mut String, row: &SceneRow, info: &ReportInfo) {
+    if let Some(c) = &row.comparison {
+        let number = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map(f).unwrap_or("–".into());
+        info_row(out, "MSE", &number(c.mse, &|m| format!("{m:.3e}")));
+        let flip = number(c.flip, &|f| format!("{f:.4}"));
+        let flip = match info.max_flip {
+            Some(max) => format!("{flip} (max {max})"),
+            None => flip,
+        };
+        info_row(out, "mean FLIP", &flip);
+    }
+    if let (Some(w), Some(h)) = (row.width, row.height) {
+        info_row(out, "size", &format!("{w}×{h}"));
+    }
+    if let Some(spp) = row.spp {
+        info_row(out, "spp", &spp.to_string());
+    }
+    if let Some(s) = row.seconds {
+        info_row(out, "time", &format!("{s:.3} s"));
+    }
+    if let Some(rays) = row.rays {
+        info_row(out, "rays", &grouped(rays));
+    }
+    if let Some(output) = &row.output {
+        info_row(out, "image", &escape_path(output));
+    }
+    if let Some(Some(reference)) = row.comparison.as_ref().map(|c| c.reference.as_ref()) {
+        info_row(out, "reference", &escape_path(reference));
+    }
+}
+
+/// A card's figures: the render and, when comparing, the reference and the FLIP heat map (or
+/// why each is missing).
+fn images(out: &mut String, row: &SceneRow) {
     let no_render = if row.status == Status::Failed && row.output.is_none() {
         "not rendered"
     } else {
@@ -276,17 +296,16 @@ fn card(out: &mut String, row: &Row, info: &ReportInfo) {
             row.width,
         );
     }
-    out.push_str("</div></article>\n");
 }
 
 /// The order of the cards: failed, then over the threshold (worst first), then the rest, each
 /// in batch order.
-fn order(rows: &[Row]) -> Vec<&Row> {
-    let mut sorted: Vec<&Row> = rows.iter().collect();
+fn order(rows: &[SceneRow]) -> Vec<&SceneRow> {
+    let mut sorted: Vec<&SceneRow> = rows.iter().collect();
     sorted.sort_by(|a, b| {
         a.status.cmp(&b.status).then_with(|| {
             if a.status == Status::OverThreshold {
-                let flip = |r: &Row| r.comparison.as_ref().and_then(|c| c.flip).unwrap_or(0.0);
+                let flip = |r: &SceneRow| r.comparison.as_ref().and_then(|c| c.flip).unwrap_or(0.0);
                 flip(b).total_cmp(&flip(a))
             } else {
                 std::cmp::Ordering::Equal
@@ -297,7 +316,7 @@ fn order(rows: &[Row]) -> Vec<&Row> {
 }
 
 /// The report page for `rows`.
-pub fn html(rows: &[Row], info: &ReportInfo) -> String {
+pub fn html(rows: &[SceneRow], info: &ReportInfo) -> String {
     let t = Totals::of(rows);
     let judged = info.max_flip.is_some();
     let mut out = String::new();
@@ -382,7 +401,7 @@ mod tests {
 
     #[test]
     fn names_and_errors_are_escaped_and_failures_come_first() {
-        let row = |name: &str, status: Status, error: Option<&str>| Row {
+        let row = |name: &str, status: Status, error: Option<&str>| SceneRow {
             scene: PathBuf::from(format!("{name}.json")),
             name: name.into(),
             output: None,

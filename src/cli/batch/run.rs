@@ -1,8 +1,7 @@
 //! Rendering many scenes in one process (`raytracer batch`): each scene loaded, rendered, written
-//! atomically and, with a reference folder, compared with the reference image of the same name
-//! (MSE, mean FLIP); one [`Row`] per scene, whatever failed. Scenes run in parallel on the
-//! caller's rayon pool, each render also spreading its tiles over it; an image's bytes do not
-//! depend on that.
+//! atomically and, with a reference folder, compared with its reference image (MSE, mean FLIP);
+//! one [`SceneRow`] per scene, whatever failed. Scenes run in parallel on the caller's rayon
+//! pool, each render also spreading its tiles over it; an image's bytes do not depend on that.
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -82,7 +81,9 @@ pub fn plan(
 /// How finished files are written: created before the work, committed whole (see
 /// [`PendingFile`]). The command line's writer also removes them on Ctrl-C.
 pub trait Writer: Sync {
+    /// Creates the temporary file that becomes `path`.
     fn create(&self, path: &Path) -> Result<PendingFile, OutputError>;
+    /// Writes `bytes` and puts the file in place.
     fn commit(&self, pending: PendingFile, bytes: &[u8]) -> Result<(), OutputError>;
 }
 
@@ -120,6 +121,7 @@ pub enum Status {
 }
 
 impl Status {
+    /// The status in the summary's `status` column.
     pub fn name(self) -> &'static str {
         match self {
             Status::Ok => "ok",
@@ -151,7 +153,7 @@ pub struct Images {
 
 /// The outcome of one scene: a line of the summary, a card of the report.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Row {
+pub struct SceneRow {
     pub scene: PathBuf,
     pub name: String,
     /// The image written, if one was.
@@ -173,9 +175,10 @@ pub struct Row {
     pub images: Images,
 }
 
-impl Row {
-    fn new(job: &Job) -> Row {
-        Row {
+impl SceneRow {
+    /// The row of `job` before it runs: ok, nothing known yet.
+    fn new(job: &Job) -> SceneRow {
+        SceneRow {
             scene: job.scene.clone(),
             name: job.name.clone(),
             output: None,
@@ -195,6 +198,7 @@ impl Row {
         }
     }
 
+    /// Marks the scene failed with `error`; a comparison it had does not pass.
     fn fail(&mut self, error: String) {
         self.status = Status::Failed;
         self.error = Some(error);
@@ -223,15 +227,15 @@ impl Row {
 /// One lane per worker thread takes the next job whenever it finishes one, so at most that many
 /// scenes are in memory at once; each render also splits its tiles over the pool, so when fewer
 /// scenes than threads are left (or one scene is large) the idle threads help with its tiles.
-pub fn run(
+pub fn render_all(
     jobs: &[Job],
     options: &RunOptions,
     writer: &dyn Writer,
-    done: &(dyn Fn(&Row) + Sync),
-) -> Vec<Row> {
+    done: &(dyn Fn(&SceneRow) + Sync),
+) -> Vec<SceneRow> {
     let lanes = rayon::current_num_threads().clamp(1, jobs.len().max(1));
     let next = AtomicUsize::new(0);
-    let rows: Vec<OnceLock<Row>> = jobs.iter().map(|_| OnceLock::new()).collect();
+    let rows: Vec<OnceLock<SceneRow>> = jobs.iter().map(|_| OnceLock::new()).collect();
     rayon::scope(|s| {
         for _ in 0..lanes {
             s.spawn(|_| {
@@ -249,7 +253,7 @@ pub fn run(
         .zip(jobs)
         .map(|(row, job)| {
             row.into_inner().unwrap_or_else(|| {
-                let mut row = Row::new(job);
+                let mut row = SceneRow::new(job);
                 row.fail("not run".into());
                 row
             })
@@ -257,8 +261,10 @@ pub fn run(
         .collect()
 }
 
-fn run_one(job: &Job, options: &RunOptions, writer: &dyn Writer) -> Row {
-    let mut row = Row::new(job);
+/// One job's row: failed at once for a job that cannot run or once the batch is cancelled, else
+/// rendered and compared.
+fn run_one(job: &Job, options: &RunOptions, writer: &dyn Writer) -> SceneRow {
+    let mut row = SceneRow::new(job);
     if options.max_flip.is_some() {
         if let Some(c) = &mut row.comparison {
             c.pass = Some(false);
@@ -278,11 +284,13 @@ fn run_one(job: &Job, options: &RunOptions, writer: &dyn Writer) -> Row {
     row
 }
 
+/// Loads, renders and writes `job`'s scene and compares the image with its reference, filling
+/// `row` as it goes; the first failure's message.
 fn render_and_compare(
     job: &Job,
     options: &RunOptions,
     writer: &dyn Writer,
-    row: &mut Row,
+    row: &mut SceneRow,
 ) -> Result<(), String> {
     let start = Instant::now();
     let scene = load(&job.scene, &options.load).map_err(|e| e.to_string())?;
@@ -325,6 +333,7 @@ fn render_and_compare(
     }
 }
 
+/// Whether `path`'s extension is `ext` (without regard to case).
 fn extension_is(path: &Path, ext: &str) -> bool {
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case(ext))
@@ -337,7 +346,12 @@ fn as_png(film: &Film, tonemap: ToneMap, exposure: f32) -> Result<Vec<u8>, Strin
 
 /// Compares the image written for `job` (read back, as `raytracer compare` reads it) with
 /// `reference`.
-fn compare(job: &Job, reference: &Path, options: &RunOptions, row: &mut Row) -> Result<(), String> {
+fn compare(
+    job: &Job,
+    reference: &Path,
+    options: &RunOptions,
+    row: &mut SceneRow,
+) -> Result<(), String> {
     let test = read_image(&job.output).map_err(|e| e.to_string())?;
     let golden = read_image(reference).map_err(|e| e.to_string())?;
     if options.keep_images {

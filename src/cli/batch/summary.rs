@@ -4,7 +4,7 @@ use std::ffi::OsString;
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::run::{Row, Status};
+use super::run::{SceneRow, Status};
 
 /// Counts of rows by status.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -16,7 +16,8 @@ pub struct Totals {
 }
 
 impl Totals {
-    pub fn of(rows: &[Row]) -> Totals {
+    /// The counts of `rows`.
+    pub fn of(rows: &[SceneRow]) -> Totals {
         let mut t = Totals {
             scenes: rows.len(),
             ..Totals::default()
@@ -58,12 +59,13 @@ enum Value {
     Bool(Option<bool>),
 }
 
+/// A path as the summary writes it (lossy where it is not Unicode).
 fn path_text(p: &Path) -> String {
     p.to_string_lossy().into_owned()
 }
 
 /// The values of a row, column by column (see [`COLUMNS`]).
-fn values(row: &Row, comparing: bool) -> Vec<Value> {
+fn row_values(row: &SceneRow, comparing: bool) -> Vec<Value> {
     let mut v = vec![
         Value::Text(Some(path_text(&row.scene))),
         Value::Text(row.output.as_deref().map(path_text)),
@@ -86,6 +88,7 @@ fn values(row: &Row, comparing: bool) -> Vec<Value> {
     v
 }
 
+/// A number as the CSV writes it: `NaN` for not a number, else as `{x}` formats it.
 fn number_text(x: f64) -> String {
     if x.is_nan() {
         "NaN".into()
@@ -115,12 +118,12 @@ fn csv_field(text: &str) -> String {
 /// The summary as CSV (RFC 4180: fields with commas, quotes, line breaks or edge spaces quoted,
 /// quotes doubled; CRLF line ends), a header line first. Empty fields for values that do not
 /// apply; `NaN` where a metric has no value.
-pub fn csv(rows: &[Row], comparing: bool) -> String {
+pub fn csv(rows: &[SceneRow], comparing: bool) -> String {
     let n = if comparing { COLUMNS.len() } else { 10 };
     let mut out = COLUMNS[..n].join(",");
     out.push_str("\r\n");
     for row in rows {
-        let fields: Vec<String> = values(row, comparing)
+        let fields: Vec<String> = row_values(row, comparing)
             .into_iter()
             .map(|v| match v {
                 Value::Text(t) => csv_field(t.as_deref().unwrap_or("")),
@@ -158,7 +161,7 @@ pub fn json_string(text: &str) -> String {
 
 /// The summary as JSON: `{"totals": {...}, "scenes": [{column: value, ...}, ...]}` with the
 /// columns of [`csv`]; `null` for values that do not apply or are not numbers.
-pub fn json(rows: &[Row], comparing: bool) -> String {
+pub fn json(rows: &[SceneRow], comparing: bool) -> String {
     let t = Totals::of(rows);
     let mut out = format!(
         "{{\n  \"totals\": {{\"scenes\": {}, \"ok\": {}, \"failed\": {}, \"over_threshold\": {}}},\n  \"scenes\": [",
@@ -166,7 +169,7 @@ pub fn json(rows: &[Row], comparing: bool) -> String {
     );
     for (i, row) in rows.iter().enumerate() {
         out.push_str(if i == 0 { "\n    {" } else { ",\n    {" });
-        for (j, (column, value)) in COLUMNS.iter().zip(values(row, comparing)).enumerate() {
+        for (j, (column, value)) in COLUMNS.iter().zip(row_values(row, comparing)).enumerate() {
             if j > 0 {
                 out.push_str(", ");
             }
@@ -196,6 +199,7 @@ pub enum SummaryFormat {
 }
 
 impl SummaryFormat {
+    /// The format `path`'s extension names (without regard to case).
     pub fn from_path(path: &Path) -> Option<SummaryFormat> {
         let ext: OsString = path.extension()?.to_ascii_lowercase();
         match ext.to_str()? {
@@ -205,7 +209,8 @@ impl SummaryFormat {
         }
     }
 
-    pub fn write(self, rows: &[Row], comparing: bool) -> String {
+    /// The summary of `rows` in this format; `comparing` adds the comparison's columns.
+    pub fn write(self, rows: &[SceneRow], comparing: bool) -> String {
         match self {
             SummaryFormat::Csv => csv(rows, comparing),
             SummaryFormat::Json => json(rows, comparing),
@@ -219,8 +224,8 @@ mod tests {
     use super::*;
     use std::path::PathBuf;
 
-    fn row(error: Option<&str>) -> Row {
-        Row {
+    fn row(error: Option<&str>) -> SceneRow {
+        SceneRow {
             scene: PathBuf::from("dir, with comma/\"q\".json"),
             name: "q".into(),
             output: None,

@@ -1,5 +1,5 @@
-//! The `auto` crossover: the query time of each accelerator on random scenes of growing size,
-//! which sets how many primitives `auto` needs before it builds a tree.
+//! The `auto` crossover: the query times of each accelerator on random scenes of growing size,
+//! which show whether a small scene is better served by no tree than by the one `auto` builds.
 
 use super::rays::{ray_sets, trace_set, RayKind};
 use super::scenes::random_scene;
@@ -11,11 +11,10 @@ use raytracer::light::Light;
 use raytracer::math::Vec3;
 
 /// Query times of `random_scene(n, backdrop)` with `none`, `flat`, `sah` and `sah4` (the tree
-/// `auto` builds), for each `n`: the
-/// three ray sets of [`ray_sets`] (camera rays at 320×240, shadow rays to the light, random
-/// secondary rays) traced on this thread, medians of `runs`. Timing the queries alone, not whole
-/// renders, keeps shading and ray generation, which the accelerators share, out of the
-/// comparison.
+/// `auto` builds), for each `n`: the three ray sets of [`ray_sets`] (camera rays at 320×240,
+/// shadow rays to the light, random secondary rays) traced on this thread, medians of `runs`.
+/// Timing the queries alone, not whole renders, keeps shading and ray generation, which the
+/// accelerators share, out of the comparison.
 pub fn crossover(
     sizes: &[usize],
     backdrop: bool,

@@ -1,11 +1,5 @@
-//! `raytracer bench --kinds SCENE…`: a scene's ray queries by kind. From the centre of every
-//! pixel, the camera ray; at its hit, the reflection ray (materials with `kr > 0` or glass) and
-//! the refraction ray (glass, unless totally reflected) the Whitted integrator would spawn there,
-//! and the shadow rays towards every light (one for a point light, up to 16 stratified samples of
-//! an area light). Each set is traced on the calling thread with the accelerator a render of the
-//! scene builds: closest-hit queries for the first three, any-hit queries for the shadow rays.
-//! These are the accelerator's costs per ray of each kind; a render adds shading, and traces an
-//! area light's shadow rays through its beams four at a time (`docs/performance.md`).
+//! `raytracer bench --kinds SCENE…`: a scene's ray queries by kind (camera, reflection,
+//! refraction, shadow), each kind's rays traced on one thread with the accelerator a render builds.
 
 use std::time::{Duration, Instant};
 
@@ -22,7 +16,11 @@ pub const SHADOW_SAMPLES_PER_LIGHT: u32 = 16;
 /// The kinds of ray, in the order the table lists them.
 pub const KINDS: [&str; 4] = ["camera", "reflection", "refraction", "shadow"];
 
-/// A scene's rays of each kind (see the module docs).
+/// A scene's rays of each kind: from the centre of every pixel, the camera ray; at its hit, the
+/// reflection ray (materials with `kr > 0` or glass) and the refraction ray (glass, unless
+/// totally reflected) the Whitted integrator would spawn there, and the shadow rays towards every
+/// light (one for a point light, up to [`SHADOW_SAMPLES_PER_LIGHT`] stratified samples of an area
+/// light).
 #[derive(Debug, Default)]
 pub struct KindRays {
     /// Camera, reflection and refraction rays (closest-hit queries).
@@ -88,6 +86,7 @@ pub fn kind_rays(scene: &Scene, accel: &Accel) -> KindRays {
 /// The timing of one kind's rays.
 #[derive(Debug, Clone)]
 pub struct KindTime {
+    /// One of [`KINDS`].
     pub kind: &'static str,
     pub rays: usize,
     /// Rays that hit something (shadow rays: that are blocked).
@@ -97,17 +96,22 @@ pub struct KindTime {
 }
 
 impl KindTime {
+    /// Million rays a second; `None` for no rays.
     pub fn mrays(&self) -> Option<f64> {
         (self.rays > 0).then(|| self.rays as f64 / self.time.as_secs_f64().max(1e-9) / 1e6)
     }
 
+    /// Nanoseconds a ray; `None` for no rays.
     pub fn ns_per_ray(&self) -> Option<f64> {
         (self.rays > 0).then(|| self.time.as_secs_f64() * 1e9 / self.rays as f64)
     }
 }
 
 /// Traces each kind of `rays` `runs` times (at least once) on the calling thread: the median
-/// time and the number of hits per kind, in the order of [`KINDS`].
+/// time and the number of hits per kind, in the order of [`KINDS`]. Camera, reflection and
+/// refraction rays are closest-hit queries, shadow rays any-hit queries: the accelerator's cost
+/// per ray of each kind, without the shading a render adds or the beams through which it traces
+/// an area light's shadow rays (`docs/performance.md`).
 pub fn time_kinds(scene: &Scene, accel: &Accel, rays: &KindRays, runs: usize) -> Vec<KindTime> {
     let prims = &scene.primitives;
     let timed = |f: &dyn Fn() -> usize| {

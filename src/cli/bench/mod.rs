@@ -1,16 +1,20 @@
-//! `raytracer bench`: the command line of the benchmarks in [`crate::bench`].
+//! `raytracer bench`: Table 1 (every scene with every accelerator), or with a flag the ray
+//! throughput, the `auto` crossover or a scene's ray queries by kind, printed as a table and
+//! optionally written as CSV.
 
-use raytracer::files::output::Outputs;
-use raytracer::files::shown;
 use std::ffi::OsString;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
 
 use clap::Parser;
 
 use raytracer::accel::{Accel, AccelKind};
+use raytracer::files::output::{Outputs, PendingFile};
+use raytracer::files::shown;
+use raytracer::scene::{load, LoadOptions};
+
 mod crossover;
 mod kinds;
 mod rays;
@@ -22,8 +26,7 @@ use crossover::crossover;
 use rays::{throughput, Throughput};
 use scenes::{default_scenes_dir, sphere_grid_triangles};
 use table::{format_csv, format_table, row_fields, table1, TableOptions, TABLE_HEADER};
-
-use raytracer::scene::{load, LoadOptions};
+use timing::ms;
 
 use crate::interrupt::Interrupt;
 use crate::{exit_code, values};
@@ -62,7 +65,7 @@ struct BenchCli {
     /// (benches/peers/embree.py).
     #[arg(long, value_name = "DIR", requires = "rays")]
     export: Option<PathBuf>,
-    /// Measure where a BVH starts to pay: none against sah on scenes of 1 to 64 primitives.
+    /// Time each accelerator (none, flat, sah, sah4) on random scenes of 1 to 64 primitives.
     #[arg(long)]
     crossover: bool,
     /// A scene's ray queries by kind (camera, reflection, refraction, shadow) on one thread, with
@@ -91,6 +94,7 @@ pub(super) fn try_parse(args: &[std::ffi::OsString]) -> Result<(), clap::Error> 
     <BenchCli as Parser>::try_parse_from(args).map(drop)
 }
 
+/// Runs `raytracer bench` (`args` start with the subcommand's name) and returns its exit status.
 pub fn main(args: &[OsString]) -> ExitCode {
     let cli = match exit_code::parse::<BenchCli>(args) {
         Ok(c) => c,
@@ -117,180 +121,225 @@ pub fn main(args: &[OsString]) -> ExitCode {
     }
 }
 
-fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
-    // The CSV may not be one of the bundled scenes the table reads (or anything they use); its
-    // folder is checked before the benchmarks run.
-    let csv_out = match &cli.csv {
-        Some(path) => {
-            let scenes = cli.scenes.clone().unwrap_or_else(default_scenes_dir);
-            let mut inputs: Vec<PathBuf> = std::fs::read_dir(&scenes)
-                .map(|entries| entries.filter_map(|e| e.ok().map(|e| e.path())).collect())
-                .unwrap_or_default();
-            inputs.extend(cli.kinds.iter().cloned());
-            Outputs::from_inputs(inputs.iter().map(PathBuf::as_path))
-                .claim(path)
-                .map_err(|e| e.to_string())?;
-            Some(interrupt.create(path).map_err(|e| e.to_string())?)
+impl BenchCli {
+    /// The runs each median is of: `--runs`, or one for a smoke run.
+    fn median_runs(&self) -> usize {
+        if self.quick {
+            1
+        } else {
+            self.runs as usize
         }
+    }
+}
+
+/// What a benchmark prints: a header and rows of fields, shown as a fixed-width table and
+/// written as CSV.
+struct TextTable {
+    header: Vec<&'static str>,
+    rows: Vec<Vec<String>>,
+}
+
+/// Runs the benchmark the flags choose, prints its table and writes the CSV.
+fn run(cli: &BenchCli, interrupt: &Interrupt) -> Result<(), String> {
+    let csv_out = match &cli.csv {
+        Some(path) => Some(create_csv(cli, path, interrupt)?),
         None => None,
     };
-    let threads = rayon::current_num_threads();
-    let runs = if cli.quick { 1 } else { cli.runs as usize };
-    let leaf_size = cli.leaf_size as usize;
-    let (header, rows): (Vec<&str>, Vec<Vec<String>>) = if cli.crossover {
-        outln!(
-            "auto crossover: ray queries (primary 320x240, shadow, incoherent) on one thread, \
-             median of {runs}; sparse = objects in space, backdrop = a quad behind them fills \
-             the view"
-        );
-        let sizes: &[usize] = if cli.quick {
-            &[1, 8, 32]
-        } else {
-            &[1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 16, 24, 32, 48, 64]
-        };
-        let header = vec![
-            "prims",
-            "scene",
-            "none_ms",
-            "flat_ms",
-            "sah_ms",
-            "sah4_ms",
-            "flat/none",
-            "sah/flat",
-            "sah4/flat",
-        ];
-        let mut rows = Vec::new();
-        for (backdrop, name) in [(false, "sparse"), (true, "backdrop")] {
-            for (n, [none, flat, sah, sah4]) in crossover(sizes, backdrop, runs, leaf_size) {
-                let ratio = |a: Duration, b: Duration| {
-                    format!("{:.2}", a.as_secs_f64() / b.as_secs_f64().max(1e-12))
-                };
-                rows.push(vec![
-                    n.to_string(),
-                    name.to_string(),
-                    format!("{:.3}", ms(none)),
-                    format!("{:.3}", ms(flat)),
-                    format!("{:.3}", ms(sah)),
-                    format!("{:.3}", ms(sah4)),
-                    ratio(flat, none),
-                    ratio(sah, flat),
-                    ratio(sah4, flat),
-                ]);
-            }
-        }
-        (header, rows)
+    let table = if cli.crossover {
+        crossover_table(cli)
     } else if !cli.kinds.is_empty() {
-        outln!(
-            "ray queries by kind: from every pixel centre, the camera ray and the rays its hit \
-             spawns (up to {} shadow rays a light); one thread, medians of {runs}",
-            kinds::SHADOW_SAMPLES_PER_LIGHT
-        );
-        let header = vec![
-            "scene",
-            "accel",
-            "kind",
-            "rays",
-            "hits",
-            "ms",
-            "mrays_s",
-            "ns_per_ray",
-        ];
-        let mut rows = Vec::new();
-        for path in &cli.kinds {
-            let scene = load(path, &LoadOptions::default()).map_err(|e| e.to_string())?;
-            let kind = cli.accel.resolved();
-            let accel = Accel::build(&scene.primitives, kind, leaf_size);
-            let rays = kinds::kind_rays(&scene, &accel);
-            for t in kinds::time_kinds(&scene, &accel, &rays, runs) {
-                let opt = |v: Option<f64>, digits: usize| {
-                    v.map_or_else(|| "-".to_string(), |v| format!("{v:.digits$}"))
-                };
-                rows.push(vec![
-                    shown(path).to_string(),
-                    kind.name().to_string(),
-                    t.kind.to_string(),
-                    t.rays.to_string(),
-                    t.hits.to_string(),
-                    format!("{:.2}", ms(t.time)),
-                    opt(t.mrays(), 2),
-                    opt(t.ns_per_ray(), 1),
-                ]);
-            }
-        }
-        (header, rows)
+        kinds_table(cli)?
     } else if cli.rays {
-        let mut grids: Vec<(u32, u32, usize)> = if cli.quick {
-            vec![(2, 8, 1)]
-        } else {
-            vec![(4, 16, runs), (16, 32, runs)]
-        };
-        if cli.huge {
-            grids.push((32, 64, 1));
-        }
-        outln!(
-            "ray throughput: sphere grids at 640x480, leaf size {leaf_size}, {threads} thread(s), \
-             medians of {runs} (the G=32 grid: one run)"
-        );
-        let mut rows = Vec::new();
-        for (g, s, n) in grids {
-            eprintln!(
-                "grid G={g} S={s}: {} triangles…",
-                sphere_grid_triangles(g, s)
-            );
-            let t = throughput(g, s, n, leaf_size, cli.export.as_deref())?;
-            if let Some(dir) = &cli.export {
-                eprintln!(
-                    "grid G={g} S={s}: triangles and rays written to {}",
-                    shown(dir)
-                );
-            }
-            print_throughput(&t, threads);
-            rows.extend(throughput_rows(&t, threads));
-        }
-        (THROUGHPUT_HEADER.to_vec(), rows)
+        throughput_table(cli)?
     } else {
-        let options = TableOptions {
-            quick: cli.quick,
-            runs,
-            scenes_dir: cli.scenes.clone().unwrap_or_else(default_scenes_dir),
-            leaf_size,
-            // A smoke run skips anything slow.
-            none_limit: Duration::from_secs_f64(if cli.quick {
-                cli.none_limit.min(1.0)
-            } else {
-                cli.none_limit
-            }),
-            estimate_budget: Duration::from_millis(if cli.quick { 50 } else { 500 }),
-        };
-        outln!(
-            "Table 1: 1 spp, {threads} thread(s), leaf size {leaf_size}, medians of {runs} run(s); \
-             memory = accelerator + primitive records ({} B each; none for the triangles of \
-             meshes of over {} faces)",
-            std::mem::size_of::<raytracer::geometry::Primitive>(),
-            raytracer::geometry::primitives::RECORD_MESH_MAX_FACES,
-        );
-        let rows = table1(&options, |r| {
-            eprintln!("  {}", row_fields(r).join(" "));
-        })?;
-        (
-            TABLE_HEADER.to_vec(),
-            rows.iter().map(|r| row_fields(r).to_vec()).collect(),
-        )
+        table1_text(cli)?
     };
-    out!("{}", format_table(&header, &rows));
+    out!("{}", format_table(&table.header, &table.rows));
     std::io::stdout().flush().map_err(|e| e.to_string())?;
     if let Some(pending) = csv_out {
         interrupt
-            .commit(pending, format_csv(&header, &rows).as_bytes())
+            .commit(pending, format_csv(&table.header, &table.rows).as_bytes())
             .map_err(|e| e.to_string())?;
     }
     Ok(())
 }
 
-fn ms(d: Duration) -> f64 {
-    d.as_secs_f64() * 1e3
+/// Claims and creates the CSV at `path` before the benchmarks run: it may not be one of the
+/// bundled scenes the table reads (or anything they use), nor a `--kinds` scene.
+fn create_csv(cli: &BenchCli, path: &Path, interrupt: &Interrupt) -> Result<PendingFile, String> {
+    let scenes = cli.scenes.clone().unwrap_or_else(default_scenes_dir);
+    let mut inputs: Vec<PathBuf> = std::fs::read_dir(&scenes)
+        .map(|entries| entries.filter_map(|e| e.ok().map(|e| e.path())).collect())
+        .unwrap_or_default();
+    inputs.extend(cli.kinds.iter().cloned());
+    Outputs::from_inputs(inputs.iter().map(PathBuf::as_path))
+        .claim(path)
+        .map_err(|e| e.to_string())?;
+    interrupt.create(path).map_err(|e| e.to_string())
 }
 
+/// `--crossover`: the query times of each accelerator on sparse and backdrop scenes of growing
+/// size, and their ratios.
+fn crossover_table(cli: &BenchCli) -> TextTable {
+    let (runs, leaf_size) = (cli.median_runs(), cli.leaf_size as usize);
+    outln!(
+        "auto crossover: ray queries (primary 320x240, shadow, incoherent) on one thread, \
+         median of {runs}; sparse = objects in space, backdrop = a quad behind them fills \
+         the view"
+    );
+    let sizes: &[usize] = if cli.quick {
+        &[1, 8, 32]
+    } else {
+        &[1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 16, 24, 32, 48, 64]
+    };
+    let header = vec![
+        "prims",
+        "scene",
+        "none_ms",
+        "flat_ms",
+        "sah_ms",
+        "sah4_ms",
+        "flat/none",
+        "sah/flat",
+        "sah4/flat",
+    ];
+    let mut rows = Vec::new();
+    for (backdrop, name) in [(false, "sparse"), (true, "backdrop")] {
+        for (n, [none, flat, sah, sah4]) in crossover(sizes, backdrop, runs, leaf_size) {
+            let ratio = |a: Duration, b: Duration| {
+                format!("{:.2}", a.as_secs_f64() / b.as_secs_f64().max(1e-12))
+            };
+            rows.push(vec![
+                n.to_string(),
+                name.to_string(),
+                format!("{:.3}", ms(none)),
+                format!("{:.3}", ms(flat)),
+                format!("{:.3}", ms(sah)),
+                format!("{:.3}", ms(sah4)),
+                ratio(flat, none),
+                ratio(sah, flat),
+                ratio(sah4, flat),
+            ]);
+        }
+    }
+    TextTable { header, rows }
+}
+
+/// `--kinds`: each scene's ray queries by kind, with the accelerator `--accel` resolves to.
+fn kinds_table(cli: &BenchCli) -> Result<TextTable, String> {
+    let runs = cli.median_runs();
+    outln!(
+        "ray queries by kind: from every pixel centre, the camera ray and the rays its hit \
+         spawns (up to {} shadow rays a light); one thread, medians of {runs}",
+        kinds::SHADOW_SAMPLES_PER_LIGHT
+    );
+    let header = vec![
+        "scene",
+        "accel",
+        "kind",
+        "rays",
+        "hits",
+        "ms",
+        "mrays_s",
+        "ns_per_ray",
+    ];
+    let mut rows = Vec::new();
+    for path in &cli.kinds {
+        let scene = load(path, &LoadOptions::default()).map_err(|e| e.to_string())?;
+        let kind = cli.accel.resolved();
+        let accel = Accel::build(&scene.primitives, kind, cli.leaf_size as usize);
+        let rays = kinds::kind_rays(&scene, &accel);
+        for t in kinds::time_kinds(&scene, &accel, &rays, runs) {
+            let opt = |v: Option<f64>, digits: usize| {
+                v.map_or_else(|| "-".to_string(), |v| format!("{v:.digits$}"))
+            };
+            rows.push(vec![
+                shown(path).to_string(),
+                kind.name().to_string(),
+                t.kind.to_string(),
+                t.rays.to_string(),
+                t.hits.to_string(),
+                format!("{:.2}", ms(t.time)),
+                opt(t.mrays(), 2),
+                opt(t.ns_per_ray(), 1),
+            ]);
+        }
+    }
+    Ok(TextTable { header, rows })
+}
+
+/// `--rays`: ray throughput on the sphere grids, each grid printed as it is done.
+fn throughput_table(cli: &BenchCli) -> Result<TextTable, String> {
+    let (runs, leaf_size) = (cli.median_runs(), cli.leaf_size as usize);
+    let threads = rayon::current_num_threads();
+    let mut grids: Vec<(u32, u32, usize)> = if cli.quick {
+        vec![(2, 8, 1)]
+    } else {
+        vec![(4, 16, runs), (16, 32, runs)]
+    };
+    if cli.huge {
+        grids.push((32, 64, 1));
+    }
+    outln!(
+        "ray throughput: sphere grids at 640x480, leaf size {leaf_size}, {threads} thread(s), \
+         medians of {runs} (the G=32 grid: one run)"
+    );
+    let mut rows = Vec::new();
+    for (g, s, n) in grids {
+        eprintln!(
+            "grid G={g} S={s}: {} triangles…",
+            sphere_grid_triangles(g, s)
+        );
+        let t = throughput(g, s, n, leaf_size, cli.export.as_deref())?;
+        if let Some(dir) = &cli.export {
+            eprintln!(
+                "grid G={g} S={s}: triangles and rays written to {}",
+                shown(dir)
+            );
+        }
+        print_throughput(&t, threads);
+        rows.extend(throughput_rows(&t, threads));
+    }
+    Ok(TextTable {
+        header: THROUGHPUT_HEADER.to_vec(),
+        rows,
+    })
+}
+
+/// Without a mode flag: Table 1, each row shown on stderr as it is done.
+fn table1_text(cli: &BenchCli) -> Result<TextTable, String> {
+    let (runs, leaf_size) = (cli.median_runs(), cli.leaf_size as usize);
+    let threads = rayon::current_num_threads();
+    let options = TableOptions {
+        quick: cli.quick,
+        runs,
+        scenes_dir: cli.scenes.clone().unwrap_or_else(default_scenes_dir),
+        leaf_size,
+        // A smoke run skips anything slow.
+        none_limit: Duration::from_secs_f64(if cli.quick {
+            cli.none_limit.min(1.0)
+        } else {
+            cli.none_limit
+        }),
+        estimate_budget: Duration::from_millis(if cli.quick { 50 } else { 500 }),
+    };
+    outln!(
+        "Table 1: 1 spp, {threads} thread(s), leaf size {leaf_size}, medians of {runs} run(s); \
+         memory = accelerator + primitive records ({} B each; none for the triangles of \
+         meshes of over {} faces)",
+        std::mem::size_of::<raytracer::geometry::Primitive>(),
+        raytracer::geometry::primitives::RECORD_MESH_MAX_FACES,
+    );
+    let rows = table1(&options, |r| {
+        eprintln!("  {}", row_fields(r).join(" "));
+    })?;
+    Ok(TextTable {
+        header: TABLE_HEADER.to_vec(),
+        rows: rows.iter().map(|r| row_fields(r).to_vec()).collect(),
+    })
+}
+
+/// The columns of `--rays`: one row per grid, tree and ray set (and the render).
 const THROUGHPUT_HEADER: [&str; 14] = [
     "grid",
     "tris",
@@ -308,6 +357,7 @@ const THROUGHPUT_HEADER: [&str; 14] = [
     "threads",
 ];
 
+/// The rows of [`THROUGHPUT_HEADER`] for one grid.
 fn throughput_rows(t: &Throughput, threads: usize) -> Vec<Vec<String>> {
     let mut rows = Vec::new();
     for tree in &t.trees {
@@ -361,6 +411,7 @@ fn throughput_rows(t: &Throughput, threads: usize) -> Vec<Vec<String>> {
     rows
 }
 
+/// One grid's results in words: sizes, builds, memory and each ray set's Mrays/s.
 fn print_throughput(t: &Throughput, threads: usize) {
     let tris = t.triangles as f64;
     outln!(

@@ -108,8 +108,10 @@ pub enum RayKind {
 }
 
 impl RayKind {
+    /// Every set, in the order they are measured.
     pub const ALL: [RayKind; 3] = [RayKind::Primary, RayKind::Shadow, RayKind::Incoherent];
 
+    /// The set's name in the output and on the `ray_set` example's command line.
     pub fn name(self) -> &'static str {
         match self {
             RayKind::Primary => "primary",
@@ -150,6 +152,7 @@ pub fn trace_set(
 }
 
 impl RaySets {
+    /// The number of rays of one set.
     pub fn len(&self, kind: RayKind) -> usize {
         match kind {
             RayKind::Primary => self.primary.len(),
@@ -164,12 +167,16 @@ impl RaySets {
 pub struct SetResult {
     pub kind: RayKind,
     pub rays: usize,
+    /// Rays that hit (shadow rays: that are blocked).
     pub hits: u64,
+    /// Median time on one thread.
     pub single: Duration,
+    /// Median time on the current pool.
     pub parallel: Duration,
 }
 
 impl SetResult {
+    /// Million rays a second in time `d`.
     pub fn mrays(&self, d: Duration) -> f64 {
         self.rays as f64 / d.as_secs_f64().max(1e-9) / 1e6
     }

@@ -25,8 +25,22 @@ pub fn sphere_grid_triangles(g: u32, s: u32) -> usize {
 /// spanning `x, z ∈ [−G, G]`. Camera at `(0, 0.6G, −1.1G)` looking at the origin, up `+y`, 60°
 /// horizontal field of view, `width × height` pixels. A point light at `(0, 2G, 0)`.
 pub fn sphere_grid(g: u32, s: u32, width: u32, height: u32) -> Scene {
+    let mut primitives = Primitives::default();
+    primitives.push_mesh(ground_quad(g), 0);
+    primitives.push_mesh(grid_spheres(g, s), 0);
+    let light = grid_light(g);
+    procedural_scene(
+        grid_camera(g, width, height),
+        primitives,
+        point_light(light, light.length_squared()),
+        Vec3::splat(0.05),
+    )
+}
+
+/// The grid's ground: the quad `y = 0` over `x, z ∈ [−G, G]` as two triangles.
+fn ground_quad(g: u32) -> Mesh {
     let gf = g as f32;
-    let ground = Mesh {
+    Mesh {
         positions: vec![
             Vec3::new(-gf, 0.0, -gf),
             Vec3::new(gf, 0.0, -gf),
@@ -41,7 +55,11 @@ pub fn sphere_grid(g: u32, s: u32, width: u32, height: u32) -> Scene {
             Vec2::new(0.0, 1.0),
         ]),
         faces: vec![[0, 1, 2], [0, 2, 3]],
-    };
+    }
+}
+
+/// The grid's `G×G` UV spheres of `S×S` quads each, as one mesh with vertex normals.
+fn grid_spheres(g: u32, s: u32) -> Mesh {
     let ring = s as usize + 1;
     let per_sphere = ring * ring;
     let spheres = (g as usize).pow(2);
@@ -83,18 +101,21 @@ pub fn sphere_grid(g: u32, s: u32, width: u32, height: u32) -> Scene {
             }
         }
     }
-    let balls = Mesh {
+    Mesh {
         positions,
         normals: Some(normals),
         uv: MeshUv::PerVertex(uvs),
         faces,
-    };
-    let mut primitives = Primitives::default();
-    primitives.push_mesh(ground, 0);
-    primitives.push_mesh(balls, 0);
+    }
+}
+
+/// The grid's camera: at `(0, 0.6G, −1.1G)` looking at the origin, up `+y`, 60° horizontal
+/// field of view.
+fn grid_camera(g: u32, width: u32, height: u32) -> Camera {
+    let gf = g as f32;
     let eye = Vec3::new(0.0, 0.6 * gf, -1.1 * gf);
     let fov_y = 2.0 * ((30.0f32).to_radians().tan() * height as f32 / width as f32).atan();
-    let camera = Camera::new(
+    Camera::new(
         eye,
         -eye,
         Vec3::Y,
@@ -104,13 +125,22 @@ pub fn sphere_grid(g: u32, s: u32, width: u32, height: u32) -> Scene {
         fov_y.to_degrees(),
         None,
     )
-    .expect("the grid camera's direction is not parallel to +y");
-    let light = grid_light(g);
+    .expect("the grid camera's direction is not parallel to +y")
+}
+
+/// A scene built in code from its parts: Phong shading of one bounce, no ambient light, every
+/// primitive of the default material (index 0), no textures, warnings or input files.
+fn procedural_scene(
+    camera: Camera,
+    primitives: Primitives,
+    light: Light,
+    background: Vec3,
+) -> Scene {
     Scene {
         variant: Variant::V2021,
         camera,
         nbounces: 1,
-        background: Vec3::splat(0.05),
+        background,
         mode: RenderMode::Phong,
         exposure: 1.0,
         ambient: Vec3::ZERO,
@@ -119,20 +149,26 @@ pub fn sphere_grid(g: u32, s: u32, width: u32, height: u32) -> Scene {
         pixel_method: None,
         tone_map: None,
         light_samples: None,
-        lights: vec![Light::Point {
-            position: light,
-            intensity: Intensity {
-                diffuse: Vec3::splat(light.length_squared()),
-                specular: Vec3::splat(light.length_squared()),
-                falloff: raytracer::light::Falloff::InverseSquare { scale: 1.0 },
-            },
-        }],
+        lights: vec![light],
         primitives,
         materials: vec![Material::default()],
         textures: Vec::new(),
         has_transmissive: false,
         warnings: Vec::new(),
         inputs: Vec::new(),
+    }
+}
+
+/// A point light at `position` whose diffuse and specular intensities are `intensity` in every
+/// channel, falling off with the square of the distance.
+fn point_light(position: Vec3, intensity: f32) -> Light {
+    Light::Point {
+        position,
+        intensity: Intensity {
+            diffuse: Vec3::splat(intensity),
+            specular: Vec3::splat(intensity),
+            falloff: raytracer::light::Falloff::InverseSquare { scale: 1.0 },
+        },
     }
 }
 
@@ -165,6 +201,7 @@ pub enum LightVariant {
 }
 
 impl LightVariant {
+    /// The variant's name in the table's `light` column.
     pub fn name(self) -> &'static str {
         match self {
             LightVariant::Point => "point",
@@ -194,79 +231,85 @@ pub fn with_lights(scene: &Scene, variant: LightVariant) -> Scene {
     let lights = scene
         .lights
         .iter()
-        .map(|l| match (variant, l) {
-            (LightVariant::Point, Light::Point { .. }) => l.clone(),
-            (
-                LightVariant::Point,
-                Light::Quad {
-                    origin,
-                    edge_u,
-                    edge_v,
-                    intensity,
-                    ..
-                },
-            ) => Light::Point {
-                position: *origin + 0.5 * (*edge_u + *edge_v),
-                intensity: *intensity,
-            },
-            (
-                LightVariant::Area,
-                Light::Quad {
-                    origin,
-                    edge_u,
-                    edge_v,
-                    intensity,
-                    ..
-                },
-            ) => Light::quad(
-                *origin,
-                *edge_u,
-                *edge_v,
-                *intensity,
-                AREA_SAMPLES,
-                Method::Jittered,
-            ),
-            (
-                LightVariant::Area,
-                Light::Point {
-                    position,
-                    intensity,
-                },
-            ) => {
-                let facing = (centre - *position).normalize_or(Vec3::Y);
-                let (u, v) = orthonormal_basis(facing);
-                let side = 0.05 * diagonal;
-                Light::quad(
-                    *position - 0.5 * side * (u + v),
-                    side * u,
-                    side * v,
-                    *intensity,
-                    AREA_SAMPLES,
-                    Method::Jittered,
-                )
-            }
-            (LightVariant::Point, Light::Sphere { .. } | Light::Triangles { .. }) => Light::Point {
-                position: l.center(),
-                intensity: *l.intensity(),
-            },
-            (LightVariant::Area, Light::Sphere { .. } | Light::Triangles { .. }) => {
-                let mut l = l.clone();
-                if let Light::Sphere {
-                    samples, method, ..
-                }
-                | Light::Triangles {
-                    samples, method, ..
-                } = &mut l
-                {
-                    (*samples, *method) = (AREA_SAMPLES, Method::Jittered);
-                }
-                l
-            }
-        })
+        .map(|l| light_variant(l, variant, centre, diagonal))
         .collect();
     Scene {
         lights,
         ..scene.clone()
+    }
+}
+
+/// `l` as a light of `variant` in a scene whose bounds have `centre` and `diagonal` (see
+/// [`with_lights`]).
+fn light_variant(l: &Light, variant: LightVariant, centre: Vec3, diagonal: f32) -> Light {
+    match (variant, l) {
+        (LightVariant::Point, Light::Point { .. }) => l.clone(),
+        (
+            LightVariant::Point,
+            Light::Quad {
+                origin,
+                edge_u,
+                edge_v,
+                intensity,
+                ..
+            },
+        ) => Light::Point {
+            position: *origin + 0.5 * (*edge_u + *edge_v),
+            intensity: *intensity,
+        },
+        (
+            LightVariant::Area,
+            Light::Quad {
+                origin,
+                edge_u,
+                edge_v,
+                intensity,
+                ..
+            },
+        ) => Light::quad(
+            *origin,
+            *edge_u,
+            *edge_v,
+            *intensity,
+            AREA_SAMPLES,
+            Method::Jittered,
+        ),
+        (
+            LightVariant::Area,
+            Light::Point {
+                position,
+                intensity,
+            },
+        ) => {
+            let facing = (centre - *position).normalize_or(Vec3::Y);
+            let (u, v) = orthonormal_basis(facing);
+            let side = 0.05 * diagonal;
+            Light::quad(
+                *position - 0.5 * side * (u + v),
+                side * u,
+                side * v,
+                *intensity,
+                AREA_SAMPLES,
+                Method::Jittered,
+            )
+        }
+        (LightVariant::Point, Light::Sphere { .. } | Light::Triangles { .. }) => Light::Point {
+            position: l.center(),
+            intensity: *l.intensity(),
+        },
+        (LightVariant::Area, Light::Sphere { .. } | Light::Triangles { .. }) => {
+            let mut l = l.clone();
+            if let Light::Sphere {
+                samples, method, ..
+            }
+            | Light::Triangles {
+                samples, method, ..
+            } = &mut l
+            {
+                (*samples, *method) = (AREA_SAMPLES, Method::Jittered);
+            }
+            l
+        }
     }
 }
 
@@ -293,32 +336,11 @@ pub fn random_scene(n: usize, width: u32, height: u32, backdrop: bool) -> Scene 
             } else {
                 [quad[0], quad[2], quad[3]]
             };
-            meshes.push(Mesh {
-                positions: p.to_vec(),
-                normals: None,
-                uv: MeshUv::Strip,
-                faces: vec![[0, 1, 2]],
-            });
-            Shape::Triangle(Triangle {
-                p,
-                mesh: meshes.len() as u32 - 1,
-                face: 0,
-            })
+            lone_triangle(p, &mut meshes)
         } else if i % 2 == 0 {
             Shape::Sphere(Sphere::new(c, 0.05 + 0.2 * u(i, 3), Vec3::Y, Vec3::X))
         } else {
-            let p = [c, c + 0.4 * v(i, 4), c + 0.4 * v(i, 7)];
-            meshes.push(Mesh {
-                positions: p.to_vec(),
-                normals: None,
-                uv: MeshUv::Strip,
-                faces: vec![[0, 1, 2]],
-            });
-            Shape::Triangle(Triangle {
-                p,
-                mesh: meshes.len() as u32 - 1,
-                face: 0,
-            })
+            lone_triangle([c, c + 0.4 * v(i, 4), c + 0.4 * v(i, 7)], &mut meshes)
         };
         primitives.push(Primitive { shape, material: 0 });
     }
@@ -334,34 +356,27 @@ pub fn random_scene(n: usize, width: u32, height: u32, backdrop: bool) -> Scene 
         None,
     )
     .expect("valid camera");
-    Scene {
-        variant: Variant::V2021,
+    procedural_scene(
         camera,
-        nbounces: 1,
-        background: Vec3::ZERO,
-        mode: RenderMode::Phong,
-        exposure: 1.0,
-        ambient: Vec3::ZERO,
-        reflection: raytracer::material::Reflection::Added,
-        pixel_samples: None,
-        pixel_method: None,
-        tone_map: None,
-        light_samples: None,
-        lights: vec![Light::Point {
-            position: Vec3::new(2.0, 3.0, -3.0),
-            intensity: Intensity {
-                diffuse: Vec3::splat(20.0),
-                specular: Vec3::splat(20.0),
-                falloff: raytracer::light::Falloff::InverseSquare { scale: 1.0 },
-            },
-        }],
-        primitives: Primitives::from_records(primitives, meshes),
-        materials: vec![Material::default()],
-        textures: Vec::new(),
-        has_transmissive: false,
-        warnings: Vec::new(),
-        inputs: Vec::new(),
-    }
+        Primitives::from_records(primitives, meshes),
+        point_light(Vec3::new(2.0, 3.0, -3.0), 20.0),
+        Vec3::ZERO,
+    )
+}
+
+/// A triangle with corners `p` in a one-face mesh of its own, which is appended to `meshes`.
+fn lone_triangle(p: [Vec3; 3], meshes: &mut Vec<Mesh>) -> Shape {
+    meshes.push(Mesh {
+        positions: p.to_vec(),
+        normals: None,
+        uv: MeshUv::Strip,
+        faces: vec![[0, 1, 2]],
+    });
+    Shape::Triangle(Triangle {
+        p,
+        mesh: meshes.len() as u32 - 1,
+        face: 0,
+    })
 }
 
 /// The default folder of the bundled scenes: `scenes/` in the working directory if it has the

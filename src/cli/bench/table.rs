@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 
 use raytracer::accel::{Accel, AccelKind};
 use raytracer::files::shown;
-use raytracer::integrator::{Integrator, Kind};
+use raytracer::integrator::{Integrator, IntegratorKind};
 use raytracer::math::Vec2;
 use raytracer::render::{render_with_accel, RenderOptions};
 use raytracer::sampling::SampleKey;
@@ -21,6 +21,7 @@ pub enum TableScene {
 }
 
 impl TableScene {
+    /// The scene's name in the table: the file's stem, or `grid-GxS`.
     pub fn name(&self) -> String {
         match self {
             TableScene::File(f) => f.trim_end_matches(".json").to_string(),
@@ -45,6 +46,7 @@ pub fn table_scenes(quick: bool) -> Vec<TableScene> {
     v
 }
 
+/// How Table 1 is run.
 #[derive(Debug, Clone)]
 pub struct TableOptions {
     /// Small scenes and images, one run: a smoke test.
@@ -53,6 +55,7 @@ pub struct TableOptions {
     pub runs: usize,
     /// Folder of the bundled scenes.
     pub scenes_dir: PathBuf,
+    /// Most primitives per BVH leaf.
     pub leaf_size: usize,
     /// Rows with `none` or `flat` whose renders are estimated to take longer than this are
     /// skipped.
@@ -63,7 +66,7 @@ pub struct TableOptions {
 
 /// One row of Table 1.
 #[derive(Debug, Clone)]
-pub struct Row {
+pub struct TableRow {
     pub scene: String,
     pub primitives: usize,
     pub triangles: usize,
@@ -83,17 +86,20 @@ pub struct Row {
     pub memory: usize,
 }
 
-impl Row {
+impl TableRow {
+    /// Million rays a second of the render; `None` when skipped.
     pub fn mrays(&self) -> Option<f64> {
         self.render
             .map(|r| self.rays as f64 / r.as_secs_f64().max(1e-9) / 1e6)
     }
 
+    /// Memory per triangle; `None` for a scene without triangles.
     pub fn bytes_per_triangle(&self) -> Option<f64> {
         (self.triangles > 0).then(|| self.memory as f64 / self.triangles as f64)
     }
 }
 
+/// The name of the accelerator `accel` is.
 fn built_name(accel: &Accel) -> &'static str {
     match accel {
         Accel::List => "list",
@@ -121,7 +127,10 @@ pub fn table_scene(which: &TableScene, options: &TableOptions) -> Result<Scene, 
 
 /// Runs Table 1: every scene, light variant and accelerator. `report` sees each row as it is
 /// done.
-pub fn table1(options: &TableOptions, mut report: impl FnMut(&Row)) -> Result<Vec<Row>, String> {
+pub fn table1(
+    options: &TableOptions,
+    mut report: impl FnMut(&TableRow),
+) -> Result<Vec<TableRow>, String> {
     let mut rows = Vec::new();
     for which in table_scenes(options.quick) {
         let base = table_scene(&which, options)?;
@@ -137,13 +146,15 @@ pub fn table1(options: &TableOptions, mut report: impl FnMut(&Row)) -> Result<Ve
     Ok(rows)
 }
 
+/// One row: `scene` with accelerator `kind`, its build and render timed (a render estimated to
+/// take too long without a tree is skipped).
 fn table_row(
     name: &str,
     scene: &Scene,
     light: LightVariant,
     kind: AccelKind,
     options: &TableOptions,
-) -> Row {
+) -> TableRow {
     let (build, accel) = timed(options.runs, || {
         Accel::build(&scene.primitives, kind, options.leaf_size)
     });
@@ -160,7 +171,7 @@ fn table_row(
         leaf_size: options.leaf_size,
         ..RenderOptions::default()
     };
-    let mut row = Row {
+    let mut row = TableRow {
         scene: name.to_string(),
         primitives: scene.primitives.len(),
         triangles: triangle_count(scene),
@@ -207,7 +218,11 @@ pub fn estimate_render(
     if pixels == 0 {
         return Duration::ZERO;
     }
-    let integrator = Integrator::new(scene, accel, Kind::chosen(options.integrator, scene));
+    let integrator = Integrator::new(
+        scene,
+        accel,
+        IntegratorKind::chosen(options.integrator, scene),
+    );
     let mut tracer =
         integrator.tracer(options.max_depth, options.trace, options.pixel_method, None);
     let start = Instant::now();
@@ -231,6 +246,7 @@ pub fn estimate_render(
     Duration::from_secs_f64(per_pixel * pixels as f64 * options.spp as f64 / threads)
 }
 
+/// The greatest common divisor of `a` and `b` (Euclid).
 fn gcd(a: u64, b: u64) -> u64 {
     if b == 0 {
         a
@@ -239,6 +255,7 @@ fn gcd(a: u64, b: u64) -> u64 {
     }
 }
 
+/// The columns of Table 1.
 pub const TABLE_HEADER: [&str; 14] = [
     "scene",
     "prims",
@@ -257,7 +274,7 @@ pub const TABLE_HEADER: [&str; 14] = [
 ];
 
 /// A row's fields, in [`TABLE_HEADER`] order.
-pub fn row_fields(r: &Row) -> [String; 14] {
+pub fn row_fields(r: &TableRow) -> [String; 14] {
     let opt = |v: Option<f64>, digits: usize| v.map_or(String::new(), |v| format!("{v:.digits$}"));
     [
         r.scene.clone(),

@@ -8,6 +8,7 @@ pub fn median(mut d: Vec<Duration>) -> Duration {
     d.get(d.len() / 2).copied().unwrap_or_default()
 }
 
+/// `d` in milliseconds.
 pub fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
 }

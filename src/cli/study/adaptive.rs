@@ -1,18 +1,10 @@
-//! Adaptive against uniform sampling at equal error, for `raytracer study --adaptive`.
-//!
-//! The reference is a uniform render of many pixel samples. Uniform runs at 1, 2, 4, … samples
-//! per pixel up to the cap give render time as a function of the error (MSE over the study's
-//! region); adaptive runs (`--adaptive`, at most the cap, one per noise threshold) are each
-//! scored by their error, and their time is divided by the time uniform sampling needs for that
-//! error, interpolated in log-log between the uniform runs around it: the equal-error time ratio
-//! (below 1, adaptive sampling wins). Both place pixel samples with Owen-scrambled Sobol points,
-//! what `--adaptive` uses by default, so the ratio measures the adaptivity alone; every other
-//! sample of the scene (area lights, the lens, a path's bounces) is the render's own.
+//! Adaptive against uniform sampling at equal error, for `raytracer study --adaptive`: the runs,
+//! the best allocation of samples that the pixels' measured noise allows, and their CSV and plot.
 
 use super::plot::{bounds, draw_axes, draw_legend, encode_png, register_font};
 use super::runs::{cost_to_reach, loglog_slope, runs_of, timed, Run, REFERENCE_SEED};
 use raytracer::film::Film;
-use raytracer::integrator::Kind;
+use raytracer::integrator::IntegratorKind;
 use raytracer::metric::{mean_flip, mse, Region};
 use raytracer::render::adaptive::{brightness_scale, samples_with_known_errors, Adaptive};
 use raytracer::render::{render, RenderError, RenderOptions, RenderOutput};
@@ -25,7 +17,7 @@ pub struct AdaptiveStudyOptions {
     /// The most samples a pixel takes: the adaptive cap and the largest uniform run.
     pub max_samples: u32,
     pub thresholds: Vec<f32>,
-    pub integrator: Kind,
+    pub integrator: IntegratorKind,
     /// Renders per run; the time is their median.
     pub runs: usize,
     /// Region the error is measured over; the whole image without one.
@@ -284,7 +276,7 @@ fn convergence_exponent(uniform: &[Run]) -> Option<f64> {
 /// if one is given.
 fn render_pixels(
     scene: &Scene,
-    integrator: Kind,
+    integrator: IntegratorKind,
     spp: u32,
     threshold: Option<f32>,
     seed: u64,
@@ -307,55 +299,44 @@ fn render_pixels(
 
 /// The reference of an adaptive study: `spp` uniform Sobol pixel samples, under a seed no run
 /// uses.
-pub fn reference(scene: &Scene, integrator: Kind, spp: u32) -> Result<Film, RenderError> {
+pub fn reference(scene: &Scene, integrator: IntegratorKind, spp: u32) -> Result<Film, RenderError> {
     Ok(render_pixels(scene, integrator, spp, None, REFERENCE_SEED)?.film)
 }
 
 /// Runs the study against `reference`, calling `progress(done, total, line)` after each run.
+///
+/// Uniform runs at 1, 2, 4, … samples per pixel up to the cap give render time as a function of
+/// the error (MSE over the study's region); adaptive runs (`--adaptive`, at most the cap, one per
+/// noise threshold) are each scored by their error, and their time is divided by the time uniform
+/// sampling needs for that error, interpolated in log-log between the uniform runs around it: the
+/// equal-error time ratio (below 1, adaptive sampling wins). Both place pixel samples with
+/// Owen-scrambled Sobol points, what `--adaptive` uses by default, so the ratio measures the
+/// adaptivity alone; every other sample of the scene (area lights, the lens, a path's bounces) is
+/// the render's own.
 pub fn run_adaptive_study(
     scene: &Scene,
     reference: &Film,
     options: &AdaptiveStudyOptions,
     mut progress: impl FnMut(usize, usize, String),
 ) -> Result<AdaptiveStudy, RenderError> {
-    let full = Region::full(reference.width, reference.height);
-    let region = options.region.unwrap_or(full);
+    let runner = Runner::new(scene, reference, options);
     let counts = super::runs::sample_counts(Method::Sobol, options.max_samples);
     let total = counts.len() + 1 + options.thresholds.len();
-    let timed = |threshold: Option<f32>, spp: u32| {
-        timed(options.runs, || {
-            render_pixels(scene, options.integrator, spp, threshold, options.seed)
-        })
-    };
     let mut uniform = Vec::with_capacity(counts.len());
     for (i, &spp) in counts.iter().enumerate() {
-        let (r, seconds) = timed(None, spp)?;
-        let run = Run {
-            sampler: Method::Sobol,
-            samples: spp,
-            seconds,
-            mse: mse(reference, &r.film, full),
-            mse_region: mse(reference, &r.film, region),
-            flip: mean_flip(reference, &r.film, full),
-        };
+        let run = runner.uniform_run(spp)?;
         progress(
             i + 1,
             total,
             format!(
-                "uniform  {spp:>5} spp        {seconds:.4} s  MSE {:.3e}",
-                run.mse_region
+                "uniform  {spp:>5} spp        {:.4} s  MSE {:.3e}",
+                run.seconds, run.mse_region
             ),
         );
         uniform.push(run);
     }
     let variance_samples = options.variance_samples;
-    let films = (0..VARIANCE_RENDERS)
-        .map(|k| {
-            let seed = VARIANCE_SEED + k;
-            Ok(render_pixels(scene, options.integrator, variance_samples, None, seed)?.film)
-        })
-        .collect::<Result<Vec<Film>, RenderError>>()?;
-    let noise = PixelNoise::measure(&films, region);
+    let noise = runner.pixel_noise()?;
     let bound = noise.as_ref().and_then(|n| n.allocation_bound(1.0));
     let rate = convergence_exponent(&uniform);
     let bound_at_rate = rate.and_then(|a| Some((a, noise.as_ref()?.allocation_bound(a)?)));
@@ -365,44 +346,24 @@ pub fn run_adaptive_study(
         format!(
             "best allocation: {} of uniform's samples, {} at the uniform runs' convergence \
              ({VARIANCE_RENDERS} renders of {variance_samples} spp)",
-            times(bound),
-            times(bound_at_rate.map(|b| b.1))
+            ratio_text(bound),
+            ratio_text(bound_at_rate.map(|b| b.1))
         ),
     );
     let mut adaptive = Vec::with_capacity(options.thresholds.len());
     for (i, &threshold) in options.thresholds.iter().enumerate() {
-        let (r, seconds) = timed(Some(threshold), options.max_samples)?;
-        let samples = r.sample_counts.as_deref().unwrap_or(&[]);
-        let mean_samples = if samples.is_empty() {
-            options.max_samples as f64
-        } else {
-            samples.iter().map(|&k| k as f64).sum::<f64>() / samples.len() as f64
-        };
-        let mse_region = mse(reference, &r.film, region);
-        let run = AdaptiveRun {
-            threshold,
-            mean_samples,
-            seconds,
-            mse: mse(reference, &r.film, full),
-            mse_region,
-            flip: mean_flip(reference, &r.film, full),
-            uniform_seconds: uniform_at(&uniform, mse_region, |r| r.seconds),
-            uniform_samples: uniform_at(&uniform, mse_region, |r| f64::from(r.samples)),
-            known_noise_ratio: rate.and_then(|a| {
-                let plan = (options.max_samples, threshold);
-                noise
-                    .as_ref()?
-                    .known_noise_share(reference, region, variance_samples, a, plan)
-            }),
-        };
+        let run = runner.adaptive_run(threshold, &uniform, noise.as_ref(), rate)?;
         progress(
             counts.len() + 1 + i + 1,
             total,
             format!(
-                "adaptive T = {threshold} ({mean_samples:.1} spp)  {seconds:.4} s  MSE {mse_region:.3e}  ratio {}, samples {} (known noise {})",
-                times(run.ratio()),
-                times(run.samples_ratio()),
-                times(run.known_noise_ratio)
+                "adaptive T = {threshold} ({:.1} spp)  {:.4} s  MSE {:.3e}  ratio {}, samples {} (known noise {})",
+                run.mean_samples,
+                run.seconds,
+                run.mse_region,
+                ratio_text(run.ratio()),
+                ratio_text(run.samples_ratio()),
+                ratio_text(run.known_noise_ratio)
             ),
         );
         adaptive.push(run);
@@ -410,7 +371,7 @@ pub fn run_adaptive_study(
     let allocation_map = noise
         .as_ref()
         .and_then(|n| n.allocation(rate.unwrap_or(1.0)))
-        .map(|shares| allocation_map(&shares, region.width));
+        .map(|shares| allocation_map(&shares, runner.region.width));
     Ok(AdaptiveStudy {
         uniform,
         adaptive,
@@ -419,6 +380,102 @@ pub fn run_adaptive_study(
         variance_samples,
         allocation_map,
     })
+}
+
+/// Renders an adaptive study's runs and scores them against its reference.
+struct Runner<'a> {
+    scene: &'a Scene,
+    reference: &'a Film,
+    options: &'a AdaptiveStudyOptions,
+    /// The whole image.
+    full: Region,
+    /// The region the study's error is measured over.
+    region: Region,
+}
+
+impl<'a> Runner<'a> {
+    /// The runs of a study of `scene` against `reference`.
+    fn new(scene: &'a Scene, reference: &'a Film, options: &'a AdaptiveStudyOptions) -> Runner<'a> {
+        let full = Region::full(reference.width, reference.height);
+        Runner {
+            scene,
+            reference,
+            options,
+            full,
+            region: options.region.unwrap_or(full),
+        }
+    }
+
+    /// `options.runs` renders at `spp` pixel samples, adaptive with `threshold` if one is given:
+    /// the last and the median time.
+    fn timed(&self, threshold: Option<f32>, spp: u32) -> Result<(RenderOutput, f64), RenderError> {
+        let options = self.options;
+        timed(options.runs, || {
+            render_pixels(self.scene, options.integrator, spp, threshold, options.seed)
+        })
+    }
+
+    /// The uniform run at `spp` pixel samples.
+    fn uniform_run(&self, spp: u32) -> Result<Run, RenderError> {
+        let (r, seconds) = self.timed(None, spp)?;
+        Ok(Run {
+            sampler: Method::Sobol,
+            samples: spp,
+            seconds,
+            mse: mse(self.reference, &r.film, self.full),
+            mse_region: mse(self.reference, &r.film, self.region),
+            flip: mean_flip(self.reference, &r.film, self.full),
+        })
+    }
+
+    /// Each pixel's noise over the region, from [`VARIANCE_RENDERS`] uniform renders of
+    /// [`AdaptiveStudyOptions::variance_samples`] under seeds of their own.
+    fn pixel_noise(&self) -> Result<Option<PixelNoise>, RenderError> {
+        let options = self.options;
+        let films = (0..VARIANCE_RENDERS)
+            .map(|k| {
+                let seed = VARIANCE_SEED + k;
+                let spp = options.variance_samples;
+                Ok(render_pixels(self.scene, options.integrator, spp, None, seed)?.film)
+            })
+            .collect::<Result<Vec<Film>, RenderError>>()?;
+        Ok(PixelNoise::measure(&films, self.region))
+    }
+
+    /// The adaptive run at `threshold`, compared with the `uniform` runs at its error and, at
+    /// the convergence `rate`, with the rule's samples under the measured `noise`.
+    fn adaptive_run(
+        &self,
+        threshold: f32,
+        uniform: &[Run],
+        noise: Option<&PixelNoise>,
+        rate: Option<f64>,
+    ) -> Result<AdaptiveRun, RenderError> {
+        let options = self.options;
+        let (r, seconds) = self.timed(Some(threshold), options.max_samples)?;
+        let samples = r.sample_counts.as_deref().unwrap_or(&[]);
+        let mean_samples = if samples.is_empty() {
+            options.max_samples as f64
+        } else {
+            samples.iter().map(|&k| k as f64).sum::<f64>() / samples.len() as f64
+        };
+        let mse_region = mse(self.reference, &r.film, self.region);
+        Ok(AdaptiveRun {
+            threshold,
+            mean_samples,
+            seconds,
+            mse: mse(self.reference, &r.film, self.full),
+            mse_region,
+            flip: mean_flip(self.reference, &r.film, self.full),
+            uniform_seconds: uniform_at(uniform, mse_region, |r| r.seconds),
+            uniform_samples: uniform_at(uniform, mse_region, |r| f64::from(r.samples)),
+            known_noise_ratio: rate.and_then(|a| {
+                let plan = (options.max_samples, threshold);
+                let measured = options.variance_samples;
+                noise?.known_noise_share(self.reference, self.region, measured, a, plan)
+            }),
+        })
+    }
 }
 
 /// The share of the pixels that [`allocation_map`] shows below full scale: the rest, a few
@@ -441,8 +498,8 @@ pub fn allocation_map(allocation: &[f64], width: u32) -> Film {
     raytracer::metric::heat_map(width, height, &shares)
 }
 
-/// A ratio as the study prints it, `0.42×`, or `-` where there is none.
-pub fn times(ratio: Option<f64>) -> String {
+/// A ratio as the study prints it, two decimals and `×`, or `-` where there is none.
+pub fn ratio_text(ratio: Option<f64>) -> String {
     ratio.map_or("-".into(), |x| format!("{x:.2}×"))
 }
 

@@ -1,8 +1,8 @@
-//! `raytracer study SCENE`: how fast each area-light sampler's error falls, per shadow ray and
-//! per second (library code in `crate::study`). Writes a CSV of the runs and a log-log plot,
-//! and prints the fitted slopes and the time each sampler needs to reach a target MSE.
-//! `--skip-work` instead times the work-skipping switches against a plain render, and
-//! `--adaptive` adaptive against uniform sampling at equal error (`crate::study::adaptive`).
+//! `raytracer study SCENE`: how fast each sampler's error falls, per sample (shadow rays of the
+//! area lights, or paths per pixel) and per second ([`runs`]). Writes a CSV of the runs and a
+//! log-log plot ([`plot`]), and prints the fitted slopes and the time each sampler needs to reach
+//! a target MSE. `--skip-work` instead times the work-skipping switches against a plain render,
+//! and `--adaptive` adaptive against uniform sampling at equal error ([`mod@adaptive`]).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -128,7 +128,7 @@ struct StudyCli {
     strict: bool,
     /// Integrator: whitted or path. Default: the scene's rendermode.
     #[arg(long)]
-    integrator: Option<raytracer::integrator::Kind>,
+    integrator: Option<raytracer::integrator::IntegratorKind>,
 }
 
 /// Parses the subcommand's command line without running it.
@@ -136,6 +136,7 @@ pub(super) fn try_parse(args: &[std::ffi::OsString]) -> Result<(), clap::Error> 
     <StudyCli as Parser>::try_parse_from(args).map(drop)
 }
 
+/// Runs `raytracer study` (`args` start with the subcommand's name) and returns its exit status.
 pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     let cli = match exit_code::parse::<StudyCli>(args) {
         Ok(c) => c,
@@ -151,11 +152,11 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     let interrupt = Interrupt::install("no results written");
     let result = pool.install(|| {
         if cli.skip_work {
-            skip_work(&cli)
+            skip_work_study(&cli)
         } else if cli.adaptive {
-            adaptive(&cli, &interrupt)
+            adaptive_study(&cli, &interrupt)
         } else {
-            run(&cli, &interrupt)
+            sampler_study(&cli, &interrupt)
         }
     });
     match result {
@@ -167,6 +168,8 @@ pub fn main(args: &[std::ffi::OsString]) -> ExitCode {
     }
 }
 
+/// Loads the scene (48 pixels wide with `--quick`) and shows its warnings (errors with
+/// `--strict`).
 fn load_scene(cli: &StudyCli) -> Result<raytracer::scene::Scene, String> {
     let options = LoadOptions {
         width: cli.width.or(if cli.quick { Some(48) } else { None }),
@@ -188,7 +191,7 @@ fn load_scene(cli: &StudyCli) -> Result<raytracer::scene::Scene, String> {
 /// claimed (so that an unwritable folder is reported before any run).
 struct Setup {
     scene: raytracer::scene::Scene,
-    integrator: raytracer::integrator::Kind,
+    integrator: raytracer::integrator::IntegratorKind,
     reference: raytracer::film::Film,
     outputs: StudyOutputs,
     /// The further outputs asked of [`setup`], in the output folder, created.
@@ -228,15 +231,15 @@ fn setup(
     cli: &StudyCli,
     interrupt: &Interrupt,
     extra: &[&str],
-    what: fn(raytracer::integrator::Kind) -> &'static str,
+    what: fn(raytracer::integrator::IntegratorKind) -> &'static str,
     render_reference: impl FnOnce(
         &raytracer::scene::Scene,
-        raytracer::integrator::Kind,
+        raytracer::integrator::IntegratorKind,
         u32,
     ) -> Result<raytracer::film::Film, raytracer::render::RenderError>,
 ) -> Result<Setup, String> {
     let scene = load_scene(cli)?;
-    let integrator = raytracer::integrator::Kind::chosen(cli.integrator, &scene);
+    let integrator = raytracer::integrator::IntegratorKind::chosen(cli.integrator, &scene);
     let (w, h) = (scene.camera.width, scene.camera.height);
     if let Some(r) = cli.region {
         if !r.fits(w, h) {
@@ -246,13 +249,60 @@ fn setup(
             ));
         }
     }
+    let claimed = claim_outputs(cli, &scene, interrupt, extra)?;
+    let reference = match (&cli.reference, claimed.reference) {
+        (Some(path), _) => read_reference(path, w, h)?,
+        (None, pending) => {
+            let n = if cli.quick {
+                cli.reference_samples.min(256)
+            } else {
+                cli.reference_samples
+            };
+            eprintln!("study: reference, {n} {}, {w}×{h} …", what(integrator));
+            let t = Instant::now();
+            let f = render_reference(&scene, integrator, n).map_err(|e| e.to_string())?;
+            eprintln!("study: reference took {:.2} s", t.elapsed().as_secs_f64());
+            if let Some((path, pending)) = pending {
+                let bytes =
+                    encode_image(&path, &f, ToneMap::Linear, 1.0).map_err(|e| e.to_string())?;
+                interrupt
+                    .commit(pending, &bytes)
+                    .map_err(|e| e.to_string())?;
+            }
+            f
+        }
+    };
+    Ok(Setup {
+        scene,
+        integrator,
+        reference,
+        outputs: claimed.outputs,
+        extra: claimed.extra,
+    })
+}
+
+/// A study's outputs, claimed and created: the CSV and the plot, the further files asked for, and
+/// the reference's EXR when the reference is rendered.
+struct Claimed {
+    outputs: StudyOutputs,
+    extra: Vec<(PathBuf, PendingFile)>,
+    reference: Option<(PathBuf, PendingFile)>,
+}
+
+/// Creates the output folder and claims every output against every input (the scene, its
+/// assets, the reference) and the others; each is created now, so that an unwritable folder is
+/// reported before the runs.
+fn claim_outputs(
+    cli: &StudyCli,
+    scene: &raytracer::scene::Scene,
+    interrupt: &Interrupt,
+    extra: &[&str],
+) -> Result<Claimed, String> {
     std::fs::create_dir_all(&cli.out)
         .map_err(|e| format!("cannot create {}: {e}", shown(&cli.out)))?;
     let csv = cli.csv.clone().unwrap_or(cli.out.join("study.csv"));
     let plot = cli.plot.clone().unwrap_or(cli.out.join("study.png"));
     let reference_out = cli.out.join("reference.exr");
-    // Every output is checked against every input (scene, its assets, the reference) and the
-    // others, and created now so that an unwritable folder is reported before the runs.
     let mut guard = Outputs::from_inputs(scene.inputs.iter().map(PathBuf::as_path));
     if let Some(r) = &cli.reference {
         guard.input(r);
@@ -270,56 +320,11 @@ fn setup(
             claim(&path).map(|pending| (path, pending))
         })
         .collect::<Result<Vec<_>, String>>()?;
-    let reference_pending = match cli.reference {
+    let reference = match cli.reference {
         Some(_) => None,
-        None => Some(claim(&reference_out)?),
+        None => Some((reference_out.clone(), claim(&reference_out)?)),
     };
-
-    let reference = match &cli.reference {
-        Some(path) => {
-            let f = read_image(path).map_err(|e| e.to_string())?;
-            if let Some(i) = f.pixels.iter().position(|p| !p.is_finite()) {
-                return Err(format!(
-                    "the reference {} has a non-finite value (NaN or infinity) at pixel ({}, {})",
-                    shown(path),
-                    i as u32 % f.width,
-                    i as u32 / f.width
-                ));
-            }
-            if (f.width, f.height) != (w, h) {
-                return Err(format!(
-                    "the reference {} is {}×{}, the scene renders {w}×{h}",
-                    shown(path),
-                    f.width,
-                    f.height
-                ));
-            }
-            f
-        }
-        None => {
-            let n = if cli.quick {
-                cli.reference_samples.min(256)
-            } else {
-                cli.reference_samples
-            };
-            eprintln!("study: reference, {n} {}, {w}×{h} …", what(integrator));
-            let t = Instant::now();
-            let f = render_reference(&scene, integrator, n).map_err(|e| e.to_string())?;
-            eprintln!("study: reference took {:.2} s", t.elapsed().as_secs_f64());
-            let bytes = encode_image(&reference_out, &f, ToneMap::Linear, 1.0)
-                .map_err(|e| e.to_string())?;
-            if let Some(pending) = reference_pending {
-                interrupt
-                    .commit(pending, &bytes)
-                    .map_err(|e| e.to_string())?;
-            }
-            f
-        }
-    };
-    Ok(Setup {
-        scene,
-        integrator,
-        reference,
+    Ok(Claimed {
         outputs: StudyOutputs {
             csv,
             plot,
@@ -327,7 +332,30 @@ fn setup(
             plot_out,
         },
         extra,
+        reference,
     })
+}
+
+/// Reads the `--reference` image at `path`: finite everywhere, and `w×h` as the scene renders.
+fn read_reference(path: &Path, w: u32, h: u32) -> Result<raytracer::film::Film, String> {
+    let f = read_image(path).map_err(|e| e.to_string())?;
+    if let Some(i) = f.pixels.iter().position(|p| !p.is_finite()) {
+        return Err(format!(
+            "the reference {} has a non-finite value (NaN or infinity) at pixel ({}, {})",
+            shown(path),
+            i as u32 % f.width,
+            i as u32 / f.width
+        ));
+    }
+    if (f.width, f.height) != (w, h) {
+        return Err(format!(
+            "the reference {} is {}×{}, the scene renders {w}×{h}",
+            shown(path),
+            f.width,
+            f.height
+        ));
+    }
+    Ok(f)
 }
 
 /// The scene's file name and the region's description, for titles.
@@ -344,7 +372,9 @@ fn described(cli: &StudyCli) -> (String, String) {
     (name, what)
 }
 
-fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
+/// The sampler study: writes the CSV and the plot, and prints the slopes and the times to the
+/// target MSE.
+fn sampler_study(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
     let Setup {
         scene,
         integrator,
@@ -402,8 +432,15 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             None => outln!("{:<10} {:>8}", m.to_string(), "-"),
         }
     }
+    print_times_to_target(cli, &runs, &options.samplers);
+    Ok(())
+}
+
+/// Prints the time each sampler needs to reach the target MSE (`--target-mse`, else what random
+/// reaches at 256 samples), and its ratio to random's.
+fn print_times_to_target(cli: &StudyCli, runs: &[runs::Run], samplers: &[Method]) {
     let target = cli.target_mse.or_else(|| {
-        let rs = runs::runs_of(&runs, Method::Random);
+        let rs = runs::runs_of(runs, Method::Random);
         let at = rs.iter().rev().find(|r| r.samples <= 256)?;
         Some(at.mse_region)
     });
@@ -411,9 +448,9 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         None => outln!("no target MSE: give --target-mse or include random"),
         Some(target) => {
             outln!("time to reach MSE {target:.3e}:");
-            let base = runs::time_to_reach(&runs, Method::Random, target);
-            for &m in &options.samplers {
-                match runs::time_to_reach(&runs, m, target) {
+            let base = runs::time_to_reach(runs, Method::Random, target);
+            for &m in samplers {
+                match runs::time_to_reach(runs, m, target) {
                     Some(t) => {
                         let ratio = base
                             .map(|b| format!("  ({:.3}× random)", t / b))
@@ -425,7 +462,6 @@ fn run(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             }
         }
     }
-    Ok(())
 }
 
 /// The largest pixel-sample count of a `--quick` adaptive study: past the first decision (16
@@ -436,13 +472,15 @@ const QUICK_ADAPTIVE_CAP: u32 = 64;
 /// folder.
 const ALLOCATION_MAP: &str = "allocation.png";
 
-fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
+/// `--adaptive`: adaptive against uniform sampling at equal error; writes the CSV, the plot and
+/// the allocation map, and prints the runs and the bounds.
+fn adaptive_study(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
     let Setup {
         scene,
         integrator,
         reference,
         outputs,
-        mut extra,
+        extra,
     } = setup(
         cli,
         interrupt,
@@ -486,7 +524,19 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
         ),
     )?;
     outputs.write(interrupt, adaptive::csv_text(&result).as_bytes(), &png)?;
-    // A region without noise has no allocation: its pending file is dropped, unwritten.
+    write_allocation_map(interrupt, &result, extra)?;
+    print_adaptive_runs(&result, &what);
+    print_allocation_bounds(&result);
+    Ok(())
+}
+
+/// Writes the study's allocation map into the file [`setup`] created for it. A region without
+/// noise has no allocation: its pending file is dropped, unwritten.
+fn write_allocation_map(
+    interrupt: &Interrupt,
+    result: &adaptive::AdaptiveStudy,
+    mut extra: Vec<(PathBuf, PendingFile)>,
+) -> Result<(), String> {
     if let (Some(map), Some((path, pending))) = (&result.allocation_map, extra.pop()) {
         let bytes = encode_image(&path, map, ToneMap::Linear, 1.0).map_err(|e| e.to_string())?;
         interrupt
@@ -494,6 +544,12 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             .map_err(|e| e.to_string())?;
         eprintln!("study: wrote {}", shown(&path));
     }
+    Ok(())
+}
+
+/// Prints the adaptive study's runs: each uniform run, and each adaptive run with its ratios to
+/// uniform sampling at equal MSE over `what`.
+fn print_adaptive_runs(result: &adaptive::AdaptiveStudy, what: &str) {
     outln!("MSE over the {what}; uniform and adaptive both with Sobol pixel samples");
     outln!(
         "{:<18} {:>9} {:>10} {:>11} {:>14} {:>7} {:>11} {:>7} {:>7}",
@@ -525,12 +581,17 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
             r.mse_region,
             r.uniform_seconds
                 .map_or("out of range".into(), |u| format!("{u:.4}")),
-            adaptive::times(r.ratio()),
+            adaptive::ratio_text(r.ratio()),
             r.uniform_samples.map_or("-".into(), |u| format!("{u:.1}")),
-            adaptive::times(r.samples_ratio()),
-            adaptive::times(r.known_noise_ratio)
+            adaptive::ratio_text(r.samples_ratio()),
+            adaptive::ratio_text(r.known_noise_ratio)
         );
     }
+}
+
+/// Prints the best allocation's share of uniform sampling's samples, at one-over-n convergence
+/// and at the uniform runs' own.
+fn print_allocation_bounds(result: &adaptive::AdaptiveStudy) {
     if let Some(b) = result.bound {
         outln!(
             "best allocation: {b:.2}× uniform's samples at equal MSE (each pixel's samples in \
@@ -550,10 +611,11 @@ fn adaptive(cli: &StudyCli, interrupt: &Interrupt) -> Result<(), String> {
              estimate (each pixel's noise as measured, converging at that rate)"
         );
     }
-    Ok(())
 }
 
-fn skip_work(cli: &StudyCli) -> Result<(), String> {
+/// `--skip-work`: times the scene plain and with each work-skipping switch, and prints each one's
+/// speed-up and error against the plain render.
+fn skip_work_study(cli: &StudyCli) -> Result<(), String> {
     let scene = load_scene(cli)?;
     let base = RenderOptions {
         spp: cli.spp,

@@ -10,6 +10,7 @@ use super::runs::*;
 /// Mono, Bitstream Vera licence: `assets/fonts/DejaVu-LICENSE.txt`).
 static FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSansMono.ttf");
 
+/// Registers [`FONT`] as plotters' `sans-serif`, once.
 pub(super) fn register_font() {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {

@@ -1,23 +1,9 @@
-//! Sampler studies: image error against sample count and run time, for `raytracer study`.
-//!
-//! A study renders a scene once with many samples (the reference), then with each sampler at a
-//! series of sample counts, and records for each run its median render time, its MSE (whole image
-//! and an optional region, e.g. a penumbra) and its mean FLIP against the reference. What is
-//! counted depends on the integrator ([`Kind`]):
-//! - Whitted: shadow rays per area light. Every run traces one ray through each pixel centre, so
-//!   the only error left is that of the area-light estimate: the quantity the samplers differ in.
-//! - Path tracing: samples per pixel, each a whole path, with every dimension of the path (pixel,
-//!   lens, bounces, light samples) placed by the sampler under study.
-//!
-//! The convergence rate is the slope of log MSE against log samples, fitted by least squares.
-//! For a smooth integrand independent samples give MSE ∝ n⁻¹; jittered (stratified) samples
-//! n⁻³ᐟ² for a discontinuous one in 2D such as a visibility edge (Mitchell, "Consequences of
-//! Stratified Sampling in Graphics", SIGGRAPH 1996); scrambled nets reach the same n⁻³ᐟ² on
-//! such edges (Owen, "Scrambled net variance for integrals of smooth functions", Ann. Stat.
-//! 1997, and Mitchell's analysis).
+//! Sampler studies for `raytracer study`: each sampler's runs at a series of sample counts scored
+//! against a reference, the convergence rates and equal-error times fitted to them, and the
+//! `--skip-work` comparison.
 
 use raytracer::film::Film;
-use raytracer::integrator::{Kind, TraceOptions};
+use raytracer::integrator::{IntegratorKind, TraceOptions};
 use raytracer::metric::{mean_flip, mse, Region};
 use raytracer::render::{render, RenderError, RenderOptions, RenderOutput};
 use raytracer::sampling::Method;
@@ -34,7 +20,8 @@ pub const FIT_MIN_SAMPLES: u32 = 4;
 #[derive(Debug, Clone, PartialEq)]
 pub struct Run {
     pub sampler: Method,
-    /// Shadow rays per area light per shading point.
+    /// Shadow rays per area light per shading point (Whitted), or paths per pixel (path
+    /// tracing).
     pub samples: u32,
     /// Median render time over the repetitions, seconds (BVH build excluded).
     pub seconds: f64,
@@ -53,7 +40,7 @@ pub struct StudyOptions {
     /// Largest sample count (shadow rays per area light, or samples per pixel).
     pub max_samples: u32,
     /// What renders the scene, and so what is counted.
-    pub integrator: Kind,
+    pub integrator: IntegratorKind,
     /// Renders per run; the time is their median.
     pub runs: usize,
     /// Region for `mse_region`; the whole image without one.
@@ -66,7 +53,7 @@ impl Default for StudyOptions {
         StudyOptions {
             samplers: SAMPLERS.to_vec(),
             max_samples: 256,
-            integrator: Kind::Whitted,
+            integrator: IntegratorKind::Whitted,
             runs: 1,
             region: None,
             seed: 0,
@@ -74,8 +61,8 @@ impl Default for StudyOptions {
     }
 }
 
-/// The shadow-ray counts a sampler is run at: powers of 4 for jittered (full square grids),
-/// powers of 2 for the others, from 1 to `max`.
+/// The sample counts a sampler is run at: powers of 4 for jittered (full square grids), powers of
+/// 2 for the others, from 1 to `max`.
 pub fn sample_counts(method: Method, max: u32) -> Vec<u32> {
     let step = if method == Method::Jittered { 4 } else { 2 };
     std::iter::successors(Some(1u32), |&n| n.checked_mul(step))
@@ -88,19 +75,19 @@ pub fn sample_counts(method: Method, max: u32) -> Vec<u32> {
 /// `samples` paths per pixel.
 pub fn render_with(
     scene: &Scene,
-    integrator: Kind,
+    integrator: IntegratorKind,
     method: Method,
     samples: u32,
     seed: u64,
 ) -> Result<RenderOutput, RenderError> {
-    if integrator == Kind::Path {
+    if integrator == IntegratorKind::Path {
         return render(
             scene,
             &RenderOptions {
                 spp: samples,
                 pixel_method: method,
                 seed,
-                integrator: Some(Kind::Path),
+                integrator: Some(IntegratorKind::Path),
                 ..RenderOptions::default()
             },
         );
@@ -126,8 +113,12 @@ pub(super) const REFERENCE_SEED: u64 = 0x5eed_f4ef;
 
 /// The reference: for Whitted, jittered shadow rays on a `k×k` grid with `k² ≥ samples`; for path
 /// tracing, `samples` Sobol paths per pixel; under a seed no run of a study uses.
-pub fn reference(scene: &Scene, integrator: Kind, samples: u32) -> Result<Film, RenderError> {
-    if integrator == Kind::Path {
+pub fn reference(
+    scene: &Scene,
+    integrator: IntegratorKind,
+    samples: u32,
+) -> Result<Film, RenderError> {
+    if integrator == IntegratorKind::Path {
         return Ok(render_with(scene, integrator, Method::Sobol, samples, REFERENCE_SEED)?.film);
     }
     let k = (samples.max(1) as f64).sqrt().ceil() as u32;
@@ -135,10 +126,10 @@ pub fn reference(scene: &Scene, integrator: Kind, samples: u32) -> Result<Film, 
 }
 
 /// What a study of `integrator` counts, for labels.
-pub fn counted(integrator: Kind) -> &'static str {
+pub fn counted(integrator: IntegratorKind) -> &'static str {
     match integrator {
-        Kind::Whitted => "shadow rays per light",
-        Kind::Path => "samples per pixel",
+        IntegratorKind::Whitted => "shadow rays per light",
+        IntegratorKind::Path => "samples per pixel",
     }
 }
 
@@ -173,6 +164,15 @@ pub(super) fn timed(
 }
 
 /// Runs the study against `reference`, calling `progress(done, total, run)` after each run.
+///
+/// A study renders the scene with each sampler at a series of sample counts, and records for
+/// each run its median render time, its MSE (whole image and an optional region, e.g. a
+/// penumbra) and its mean FLIP against the reference. What is counted depends on the integrator
+/// ([`IntegratorKind`]):
+/// - Whitted: shadow rays per area light. Every run traces one ray through each pixel centre, so
+///   the only error left is that of the area-light estimate: the quantity the samplers differ in.
+/// - Path tracing: samples per pixel, each a whole path, with every dimension of the path (pixel,
+///   lens, bounces, light samples) placed by the sampler under study.
 pub fn run_study(
     scene: &Scene,
     reference: &Film,
@@ -237,7 +237,12 @@ pub fn loglog_slope(points: &[(f64, f64)]) -> Option<f64> {
 }
 
 /// The fitted slope of the region MSE against samples for one sampler, over runs with at least
-/// [`FIT_MIN_SAMPLES`] samples.
+/// [`FIT_MIN_SAMPLES`] samples: the convergence rate, log MSE against log samples by least
+/// squares. For a smooth integrand independent samples give MSE ∝ n⁻¹; jittered (stratified)
+/// samples n⁻³ᐟ² for a discontinuous one in 2D such as a visibility edge (Mitchell,
+/// "Consequences of Stratified Sampling in Graphics", SIGGRAPH 1996); scrambled nets reach the
+/// same n⁻³ᐟ² on such edges (Owen, "Scrambled net variance for integrals of smooth functions",
+/// Ann. Stat. 1997, and Mitchell's analysis).
 pub fn mse_slope(runs: &[Run], sampler: Method) -> Option<f64> {
     let pts: Vec<(f64, f64)> = runs_of(runs, sampler)
         .iter()
@@ -453,8 +458,8 @@ mod tests {
             &options,
         )
         .unwrap();
-        let integrator = Kind::of_scene(&scene);
-        assert_eq!(integrator, Kind::Path);
+        let integrator = IntegratorKind::of_scene(&scene);
+        assert_eq!(integrator, IntegratorKind::Path);
         let reference = reference(&scene, integrator, 1024).unwrap();
         let study = StudyOptions {
             max_samples: 64,
