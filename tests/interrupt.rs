@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
 
 use raytracer::accel::{Accel, AccelKind};
-use raytracer::integrator::{Integrator, Kind, TraceOptions};
+use raytracer::integrator::{Integrator, IntegratorKind, TraceOptions};
 use raytracer::render::{render, render_with_accel_counting, RenderError, RenderOptions};
 use raytracer::sampling::SampleKey;
 use raytracer::scene::{load_str, LoadOptions, Scene};
@@ -60,7 +60,7 @@ fn a_cancelled_camera_sample_stops_inside_its_shadow_rays_and_its_ray_tree() {
     let scene = heavy_scene(8, 256, 100_000);
     let accel = Accel::build(&scene.primitives, AccelKind::Auto, 4);
     let flag = AtomicBool::new(true);
-    for kind in [Kind::Whitted, Kind::Path] {
+    for kind in [IntegratorKind::Whitted, IntegratorKind::Path] {
         let integrator = Integrator::new(&scene, &accel, kind);
         let mut tracer = integrator.tracer(
             u32::MAX,

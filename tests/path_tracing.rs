@@ -5,7 +5,7 @@ mod common;
 
 use common::{load_json, write_scene};
 use raytracer::film::Film;
-use raytracer::integrator::Kind;
+use raytracer::integrator::IntegratorKind;
 use raytracer::math::Vec3;
 use raytracer::render::{render, RenderOptions};
 use raytracer::sampling::Method;
@@ -19,7 +19,7 @@ fn path(spp: u32) -> RenderOptions {
     RenderOptions {
         spp,
         pixel_method: Method::Sobol,
-        integrator: Some(Kind::Path),
+        integrator: Some(IntegratorKind::Path),
         ..Default::default()
     }
 }
@@ -123,7 +123,7 @@ fn direct_light_equals_the_whitted_diffuse_term() {
         let traced = render(
             &scene,
             &RenderOptions {
-                integrator: Some(Kind::Path),
+                integrator: Some(IntegratorKind::Path),
                 ..Default::default()
             },
         )
@@ -153,13 +153,13 @@ fn rendermode_pathtrace_selects_the_path_tracer() {
     );
     let scene = load_json(&json);
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
-    assert_eq!(Kind::of_scene(&scene), Kind::Path);
+    assert_eq!(IntegratorKind::of_scene(&scene), IntegratorKind::Path);
     let traced = mean(&render(&scene, &RenderOptions::default()).unwrap().film);
     let whitted = mean(
         &render(
             &scene,
             &RenderOptions {
-                integrator: Some(Kind::Whitted),
+                integrator: Some(IntegratorKind::Whitted),
                 ..Default::default()
             },
         )
@@ -172,7 +172,11 @@ fn rendermode_pathtrace_selects_the_path_tracer() {
     for spelling in ["pathtracing", "path", "pathtracer", "PathTrace"] {
         let (_dir, p) = write_scene(&json.replace("\"pathtrace\"", &format!("\"{spelling}\"")));
         let s = load(&p, &LoadOptions::default()).unwrap();
-        assert_eq!(Kind::of_scene(&s), Kind::Path, "{spelling}");
+        assert_eq!(
+            IntegratorKind::of_scene(&s),
+            IntegratorKind::Path,
+            "{spelling}"
+        );
         assert!(s.warnings.is_empty(), "{spelling}: {:?}", s.warnings);
     }
 }

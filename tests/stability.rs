@@ -74,7 +74,7 @@ fn single_mesh(p: Vec<Vec3>, faces: Vec<[u32; 3]>) -> Primitives {
 }
 
 #[derive(Clone, Copy, PartialEq, Debug)]
-enum Kind {
+enum IntegratorKind {
     Sphere,
     Triangle,
     Quad,
@@ -83,29 +83,34 @@ enum Kind {
 
 /// A random shape of size `scale` at `pos`, a point on its surface to aim at, and the outward
 /// normal there (for planar shapes, either side).
-fn random_shape(rng: &mut Rng, kind: Kind, pos: Vec3, scale: f32) -> (Primitives, Vec3, Vec3) {
+fn random_shape(
+    rng: &mut Rng,
+    kind: IntegratorKind,
+    pos: Vec3,
+    scale: f32,
+) -> (Primitives, Vec3, Vec3) {
     let one = |shape: Shape| Primitives::from(vec![Primitive { shape, material: 0 }]);
     match kind {
-        Kind::Sphere => {
+        IntegratorKind::Sphere => {
             let n = rng.dir();
             let s = Sphere::new(pos, scale, Vec3::Y, Vec3::NEG_X);
             (one(Shape::Sphere(s)), pos + n * scale, n)
         }
-        Kind::Triangle => {
+        IntegratorKind::Triangle => {
             let p: Vec<Vec3> = (0..3).map(|_| pos + rng.dir() * scale).collect();
             let (a, b) = (rng.range(0.05, 0.9), rng.next());
             let target = p[0] + a * ((p[1] - p[0]) + b * (p[2] - p[1]));
             let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or(Vec3::Z);
             (single_mesh(p, vec![[0, 1, 2]]), target, n)
         }
-        Kind::Quad => {
+        IntegratorKind::Quad => {
             let (e1, e2) = (rng.dir() * scale, rng.dir() * scale);
             let p = vec![pos, pos + e1, pos + e1 + e2, pos + e2];
             let target = pos + rng.range(0.02, 0.98) * e1 + rng.range(0.02, 0.98) * e2;
             let n = e1.cross(e2).normalize_or(Vec3::Z);
             (single_mesh(p, vec![[0, 1, 2], [0, 2, 3]]), target, n)
         }
-        Kind::Cylinder => {
+        IntegratorKind::Cylinder => {
             let axis = rng.dir();
             let half = scale * rng.range(0.2, 5.0);
             let c = Cylinder::new(pos, axis, scale, half);
@@ -148,7 +153,12 @@ fn spawned_rays_never_hit_the_surface_they_leave() {
     let (mut rays, mut failures, mut missed_aim, mut transmission_checked) =
         (0usize, Vec::new(), 0, 0);
     for i in 0..shapes {
-        let kind = [Kind::Sphere, Kind::Triangle, Kind::Quad, Kind::Cylinder][i % 4];
+        let kind = [
+            IntegratorKind::Sphere,
+            IntegratorKind::Triangle,
+            IntegratorKind::Quad,
+            IntegratorKind::Cylinder,
+        ][i % 4];
         let scale = rng.log(1e-6, 1e6);
         let pos = if rng.next() < 0.2 {
             Vec3::ZERO
@@ -166,7 +176,7 @@ fn spawned_rays_never_hit_the_surface_they_leave() {
         let (prims, target, normal) = random_shape(&mut rng, kind, pos, scale);
         // From outside: across the tangent plane, on the outer side of a convex shape (either side
         // of a planar one).
-        let planar = matches!(kind, Kind::Triangle | Kind::Quad);
+        let planar = matches!(kind, IntegratorKind::Triangle | IntegratorKind::Quad);
         let side = if planar && rng.next() < 0.5 {
             -normal
         } else {
@@ -189,7 +199,7 @@ fn spawned_rays_never_hit_the_surface_they_leave() {
         } else {
             -hit.normal
         };
-        let planar = matches!(kind, Kind::Triangle | Kind::Quad);
+        let planar = matches!(kind, IntegratorKind::Triangle | IntegratorKind::Quad);
         for _ in 0..per_hit {
             // Reflection-like.
             let w = rng.hemisphere(outward, 0.0);
@@ -231,7 +241,7 @@ fn spawned_rays_never_hit_the_surface_they_leave() {
                         pos.length()
                     ));
                 }
-            } else if kind == Kind::Sphere {
+            } else if kind == IntegratorKind::Sphere {
                 let chord = 2.0 * scale as f64 * (w.dot(-outward) as f64);
                 if chord > 1e3 * hit.error.length() as f64 {
                     transmission_checked += 1;

@@ -28,43 +28,43 @@ pub use whitted::{Whitted, BINARY_HIT, MAX_SECONDARY_RAYS_PER_SAMPLE};
 
 /// Which integrator renders a scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Kind {
+pub enum IntegratorKind {
     /// Whitted ray tracing (the `phong` and `binary` render modes).
     Whitted,
     /// Path tracing.
     Path,
 }
 
-impl Kind {
+impl IntegratorKind {
     /// The integrator a scene asks for: the path tracer for `"rendermode": "pathtrace"` (and its
     /// spellings), Whitted ray tracing otherwise.
-    pub fn of_scene(scene: &Scene) -> Kind {
+    pub fn of_scene(scene: &Scene) -> IntegratorKind {
         match scene.mode {
-            RenderMode::Path => Kind::Path,
-            RenderMode::Phong | RenderMode::Binary => Kind::Whitted,
+            RenderMode::Path => IntegratorKind::Path,
+            RenderMode::Phong | RenderMode::Binary => IntegratorKind::Whitted,
         }
     }
 
     /// `choice` (a command line's or options' `--integrator`), else what `scene` asks for.
-    pub fn chosen(choice: Option<Kind>, scene: &Scene) -> Kind {
-        choice.unwrap_or_else(|| Kind::of_scene(scene))
+    pub fn chosen(choice: Option<IntegratorKind>, scene: &Scene) -> IntegratorKind {
+        choice.unwrap_or_else(|| IntegratorKind::of_scene(scene))
     }
 
     pub fn name(self) -> &'static str {
         match self {
-            Kind::Whitted => "whitted",
-            Kind::Path => "path",
+            IntegratorKind::Whitted => "whitted",
+            IntegratorKind::Path => "path",
         }
     }
 }
 
-impl std::str::FromStr for Kind {
+impl std::str::FromStr for IntegratorKind {
     type Err = String;
 
-    fn from_str(s: &str) -> Result<Kind, String> {
+    fn from_str(s: &str) -> Result<IntegratorKind, String> {
         match s.to_ascii_lowercase().as_str() {
-            "whitted" | "phong" => Ok(Kind::Whitted),
-            "path" | "pathtrace" | "pathtracer" | "pathtracing" => Ok(Kind::Path),
+            "whitted" | "phong" => Ok(IntegratorKind::Whitted),
+            "path" | "pathtrace" | "pathtracer" | "pathtracing" => Ok(IntegratorKind::Path),
             other => Err(format!(
                 "unknown integrator '{other}' (expected whitted or path)"
             )),
@@ -72,7 +72,7 @@ impl std::str::FromStr for Kind {
     }
 }
 
-impl std::fmt::Display for Kind {
+impl std::fmt::Display for IntegratorKind {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())
     }
@@ -91,18 +91,18 @@ pub struct Integrator<'a> {
 }
 
 impl<'a> Integrator<'a> {
-    pub fn new(scene: &'a Scene, accel: &'a Accel, kind: Kind) -> Integrator<'a> {
+    pub fn new(scene: &'a Scene, accel: &'a Accel, kind: IntegratorKind) -> Integrator<'a> {
         Integrator {
             scene,
             accel,
-            emitters: (kind == Kind::Path).then(|| emitters::Emitters::new(scene)),
+            emitters: (kind == IntegratorKind::Path).then(|| emitters::Emitters::new(scene)),
             interiors: match kind {
-                Kind::Whitted => whitted::interiors(scene, accel),
-                Kind::Path => Interiors::default(),
+                IntegratorKind::Whitted => whitted::interiors(scene, accel),
+                IntegratorKind::Path => Interiors::default(),
             },
             light_buffers: match kind {
-                Kind::Whitted => whitted::light_buffers(scene, accel),
-                Kind::Path => Vec::new(),
+                IntegratorKind::Whitted => whitted::light_buffers(scene, accel),
+                IntegratorKind::Path => Vec::new(),
             },
         }
     }

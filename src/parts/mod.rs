@@ -135,7 +135,7 @@ pub fn fingerprint(scene: &Scene, options: &RenderOptions) -> std::io::Result<u6
         options.max_depth,
         options.trace,
         options.adaptive,
-        crate::integrator::Kind::chosen(options.integrator, scene)
+        crate::integrator::IntegratorKind::chosen(options.integrator, scene)
     );
     h.field(settings.as_bytes());
     Ok(h.0)

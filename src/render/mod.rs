@@ -20,7 +20,7 @@ use rayon::prelude::*;
 use crate::accel::{Accel, AccelKind};
 use crate::film::sum::MAX_SAMPLES;
 use crate::film::{Film, PixelRect, PixelSum};
-use crate::integrator::{Integrator, Kind, RayCounts, TraceOptions, Tracer};
+use crate::integrator::{Integrator, IntegratorKind, RayCounts, TraceOptions, Tracer};
 use crate::math::{Vec2, Vec3};
 use crate::sampling::{Method, SampleKey};
 use crate::scene::Scene;
@@ -43,7 +43,7 @@ pub struct RenderOptions {
     /// Light-sampling overrides and work-skipping switches (the default changes nothing).
     pub trace: TraceOptions,
     /// The integrator, in place of the one the scene's `rendermode` asks for.
-    pub integrator: Option<Kind>,
+    pub integrator: Option<IntegratorKind>,
     /// Show a progress bar on stderr.
     pub progress: bool,
     /// Set from outside (e.g. on Ctrl-C) to stop the render early; the output is then marked
@@ -309,7 +309,11 @@ impl Plan {
             spp,
             buffers,
         } = self;
-        let integrator = Integrator::new(scene, accel, Kind::chosen(options.integrator, scene));
+        let integrator = Integrator::new(
+            scene,
+            accel,
+            IntegratorKind::chosen(options.integrator, scene),
+        );
         let work = Work {
             scene,
             integrator: &integrator,
