@@ -233,6 +233,24 @@ impl Light {
         })
     }
 
+    /// The light with `count` shadow rays per shading point placed with `method`; a point light,
+    /// which takes one, as it is.
+    pub fn with_samples(mut self, count: u32, placed: Method) -> Light {
+        if let Light::Quad {
+            samples, method, ..
+        }
+        | Light::Sphere {
+            samples, method, ..
+        }
+        | Light::Triangles {
+            samples, method, ..
+        } = &mut self
+        {
+            (*samples, *method) = (count, placed);
+        }
+        self
+    }
+
     /// How many shadow rays this light takes per shading point.
     pub fn sample_count(&self) -> u32 {
         match self {

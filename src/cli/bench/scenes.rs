@@ -243,37 +243,11 @@ pub fn with_lights(scene: &Scene, variant: LightVariant) -> Scene {
 /// [`with_lights`]).
 fn light_variant(l: &Light, variant: LightVariant, centre: Vec3, diagonal: f32) -> Light {
     match (variant, l) {
-        (LightVariant::Point, Light::Point { .. }) => l.clone(),
-        (
-            LightVariant::Point,
-            Light::Quad {
-                origin,
-                edge_u,
-                edge_v,
-                intensity,
-                ..
-            },
-        ) => Light::Point {
-            position: *origin + 0.5 * (*edge_u + *edge_v),
-            intensity: *intensity,
+        (LightVariant::Point, _) if l.is_point() => l.clone(),
+        (LightVariant::Point, _) => Light::Point {
+            position: l.center(),
+            intensity: *l.intensity(),
         },
-        (
-            LightVariant::Area,
-            Light::Quad {
-                origin,
-                edge_u,
-                edge_v,
-                intensity,
-                ..
-            },
-        ) => Light::quad(
-            *origin,
-            *edge_u,
-            *edge_v,
-            *intensity,
-            AREA_SAMPLES,
-            Method::Jittered,
-        ),
         (
             LightVariant::Area,
             Light::Point {
@@ -293,23 +267,7 @@ fn light_variant(l: &Light, variant: LightVariant, centre: Vec3, diagonal: f32) 
                 Method::Jittered,
             )
         }
-        (LightVariant::Point, Light::Sphere { .. } | Light::Triangles { .. }) => Light::Point {
-            position: l.center(),
-            intensity: *l.intensity(),
-        },
-        (LightVariant::Area, Light::Sphere { .. } | Light::Triangles { .. }) => {
-            let mut l = l.clone();
-            if let Light::Sphere {
-                samples, method, ..
-            }
-            | Light::Triangles {
-                samples, method, ..
-            } = &mut l
-            {
-                (*samples, *method) = (AREA_SAMPLES, Method::Jittered);
-            }
-            l
-        }
+        (LightVariant::Area, _) => l.clone().with_samples(AREA_SAMPLES, Method::Jittered),
     }
 }
 
