@@ -9,6 +9,7 @@
 //! | `raytracer compare REF TEST` | [`compare`] |
 //! | `raytracer study SCENE` | [`study`] |
 //! | `raytracer bench` | [`mod@bench`] |
+//! | `raytracer check SCENE...` | [`check`] |
 
 /// Writes to standard output like `print!`, but a closed pipe (`raytracer compare a b | head -1`)
 /// is not a panic: what cannot be printed is dropped, and the command's work and exit status go
@@ -30,6 +31,7 @@ macro_rules! outln {
 
 mod batch;
 mod bench;
+mod check;
 mod compare;
 mod exit_code;
 mod image_flags;
@@ -46,7 +48,7 @@ use std::process::ExitCode;
 /// when given as `./bench`).
 fn subcommand(args: &[OsString]) -> Option<&'static str> {
     let first = args.get(1)?;
-    ["batch", "bench", "compare", "merge", "study"]
+    ["batch", "bench", "check", "compare", "merge", "study"]
         .into_iter()
         .find(|name| first == name)
 }
@@ -75,6 +77,7 @@ fn main() -> ExitCode {
     match subcommand(args) {
         Some("batch") => batch::main(&args[1..]),
         Some("bench") => bench::main(&args[1..]),
+        Some("check") => check::main(&args[1..]),
         Some("compare") => compare::main(&args[1..]),
         Some("merge") => merge::main(&args[1..]),
         Some("study") => study::main(&args[1..]),
@@ -88,6 +91,7 @@ pub fn try_parse(args: &[OsString]) -> Result<(), clap::Error> {
     match subcommand(args) {
         Some("batch") => batch::try_parse(&args[1..]),
         Some("bench") => bench::try_parse(&args[1..]),
+        Some("check") => check::try_parse(&args[1..]),
         Some("compare") => compare::try_parse(&args[1..]),
         Some("merge") => merge::try_parse(&args[1..]),
         Some("study") => study::try_parse(&args[1..]),

@@ -12,7 +12,7 @@ use clap::Parser;
 mod discover;
 mod report;
 mod run;
-mod summary;
+pub(crate) mod summary;
 
 use raytracer::files::output::{OutputError, Outputs, PendingFile};
 use raytracer::files::shown;
