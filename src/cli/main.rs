@@ -10,6 +10,7 @@
 //! | `raytracer study SCENE` | [`study`] |
 //! | `raytracer bench` | [`mod@bench`] |
 //! | `raytracer check SCENE...` | [`check`] |
+//! | `raytracer watch SCENE` | [`watch`] |
 
 /// Writes to standard output like `print!`, but a closed pipe (`raytracer compare a b | head -1`)
 /// is not a panic: what cannot be printed is dropped, and the command's work and exit status go
@@ -40,6 +41,7 @@ mod merge;
 mod render;
 mod study;
 mod values;
+mod watch;
 
 use std::ffi::OsString;
 use std::process::ExitCode;
@@ -48,9 +50,11 @@ use std::process::ExitCode;
 /// when given as `./bench`).
 fn subcommand(args: &[OsString]) -> Option<&'static str> {
     let first = args.get(1)?;
-    ["batch", "bench", "check", "compare", "merge", "study"]
-        .into_iter()
-        .find(|name| first == name)
+    [
+        "batch", "bench", "check", "compare", "merge", "study", "watch",
+    ]
+    .into_iter()
+    .find(|name| first == name)
 }
 
 /// `--strict`: every warning about `scene` is an error. Prints each as one and fails with their
@@ -81,6 +85,7 @@ fn main() -> ExitCode {
         Some("compare") => compare::main(&args[1..]),
         Some("merge") => merge::main(&args[1..]),
         Some("study") => study::main(&args[1..]),
+        Some("watch") => watch::main(&args[1..]),
         _ => render::main(args),
     }
 }
@@ -95,6 +100,7 @@ pub fn try_parse(args: &[OsString]) -> Result<(), clap::Error> {
         Some("compare") => compare::try_parse(&args[1..]),
         Some("merge") => merge::try_parse(&args[1..]),
         Some("study") => study::try_parse(&args[1..]),
+        Some("watch") => watch::try_parse(&args[1..]),
         _ => render::try_parse(args),
     }
 }
