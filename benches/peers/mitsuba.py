@@ -1,8 +1,10 @@
 """Path tracing against Mitsuba 3: bias, noise at equal spp and time to equal error, one thread.
 
-    pip install mitsuba            # variant scalar_rgb; the Python API only
+    pip install mitsuba            # the Python API only
+    apt-get install libllvm19      # for --variant llvm_ad_rgb, Mitsuba's vectorised CPU variant
     cargo build --release
     python3 benches/peers/mitsuba.py [--scenes cornell,pt_pointlights] [--size 128] [--runs 3]
+                                     [--variant scalar_rgb|llvm_ad_rgb] [--sampler independent|ldsampler|...]
                                      [--raytracer BIN] [--ref-spp 4096] [--ladder 4,8,...,256]
 
 Each scene is converted to a Mitsuba scene dictionary (`convert`), which maps exactly the subset
@@ -32,7 +34,8 @@ Per scene it then measures:
 3. noise at equal spp: MSE against the Mitsuba reference (median over --runs seeds), ours/Mitsuba.
    MSE is over pixels and RGB channels, less the reference's own estimated variance.
 4. time to equal error: both renderers over the --ladder of spp, --runs seeds each. Mitsuba is timed
-   around mi.render only (the scene is loaded and warmed up first); ours is the whole process
+   around mi.render and reading its image back (the scene is loaded and warmed up first; a
+   vectorised variant runs its kernel when the image is read); ours is the whole process
    (start-up, scene load, BVH, render, EXR write). The time each needs to reach the MSE that Mitsuba
    has at --target-spp is interpolated log-log on the medians; the ratio is ours/Mitsuba.
 
@@ -68,10 +71,23 @@ mi = None
 dr = None
 
 
-def import_mitsuba():
+# Where Debian and Ubuntu put LLVM 19's shared library (`apt-get install libllvm19`), for the
+# llvm_* variants when DRJIT_LIBLLVM_PATH is not set.
+LIBLLVM = ["/usr/lib/llvm-19/lib/libLLVM.so.19.1", "/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1",
+           "/usr/lib/aarch64-linux-gnu/libLLVM.so.19.1"]
+
+
+def import_mitsuba(variant="scalar_rgb"):
+    """Imports Mitsuba with `variant` (scalar_rgb, or llvm_ad_rgb: its vectorised CPU variant), on
+    one thread."""
     global mi, dr
     if mi is not None:
         return
+    if variant.startswith("llvm") and "DRJIT_LIBLLVM_PATH" not in os.environ:
+        found = [p for p in LIBLLVM if os.path.exists(p)]
+        if not found:
+            sys.exit("%s needs LLVM: apt-get install libllvm19, or set DRJIT_LIBLLVM_PATH" % variant)
+        os.environ["DRJIT_LIBLLVM_PATH"] = found[0]
     # This file is itself named mitsuba.py: keep its folder off the path for the import.
     sys.path[:] = [p for p in sys.path if os.path.abspath(p or os.curdir) != HERE]
     sys.modules.pop("mitsuba", None)
@@ -81,7 +97,7 @@ def import_mitsuba():
     except ImportError:
         sys.exit("mitsuba is not installed: pip install mitsuba")
     mi, dr = mitsuba, drjit
-    mi.set_variant("scalar_rgb")
+    mi.set_variant(variant)
     dr.set_thread_count(1)
     mi.set_log_level(mi.LogLevel.Warn)
 
@@ -376,10 +392,11 @@ class Mitsuba:
         """(image as float64 h×w×3 in our orientation, seconds spent in mi.render)."""
         t0, c0 = time.perf_counter(), time.process_time()
         img = mi.render(self.scene, spp=spp, seed=seed)
+        # Reading the image back is timed: a vectorised variant only runs its kernel then.
+        a = np.array(img, dtype=np.float64)[:, :, :3]
         dt = time.perf_counter() - t0
         self.cpu_s += time.process_time() - c0
         self.wall_s += dt
-        a = np.array(img, dtype=np.float64)[:, :, :3]
         return (a[:, ::-1] if self.mirror_x else a), dt
 
 
@@ -533,6 +550,8 @@ def main():
     ap.add_argument("--target-spp", type=int, default=64,
                     help="time to equal error: the MSE Mitsuba reaches at this spp")
     ap.add_argument("--grid", type=int, default=4)
+    ap.add_argument("--variant", default="scalar_rgb", choices=["scalar_rgb", "llvm_ad_rgb"],
+                    help="Mitsuba variant: scalar_rgb, or llvm_ad_rgb (vectorised; needs libllvm19)")
     ap.add_argument("--sampler", default="independent",
                     help="Mitsuba sampler: independent, multijitter, stratified, ldsampler")
     ap.add_argument("--our-args", default="", help="extra raytracer flags, e.g. '--pixel-sampler random'")
@@ -550,16 +569,17 @@ def main():
                     help="convert the scenes and render Mitsuba at 16 spp only (no raytracer)")
     args = ap.parse_args()
 
-    import_mitsuba()
+    import_mitsuba(args.variant)
     ladder = [int(x) for x in args.ladder.split(",")]
     noise_spp = [int(x) for x in args.noise_spp.split(",")]
     for s in noise_spp + [args.target_spp]:
         if s not in ladder:
             sys.exit("--noise-spp and --target-spp must be steps of --ladder (%d is not)" % s)
 
-    print("Mitsuba %s (scalar_rgb, 1 thread; sampler %s, the references: independent), %d px wide, "
+    print("Mitsuba %s (%s, 1 thread; sampler %s, the references: independent), %d px wide, "
           "references %d spp in %d chunks; raytracer %s\n"
-          % (mi.__version__, args.sampler, args.size, args.ref_spp, args.chunks, args.raytracer))
+          % (mi.__version__, args.variant, args.sampler, args.size, args.ref_spp, args.chunks,
+             args.raytracer))
     for name in args.scenes.split(","):
         path = SCENES.get(name, name)
         with open(path, "rb") as f:
@@ -581,7 +601,8 @@ def main():
             continue
 
         settings = [w, h, args.ref_spp, args.chunks] + ([args.ref_seed] if args.ref_seed != 1000 else [])
-        key = hashlib.sha256(json.dumps([CONVERTER_VERSION, mi.__version__, "independent"] + settings)
+        key = hashlib.sha256(json.dumps([CONVERTER_VERSION, mi.__version__, "independent"] + settings
+                                        + ([args.variant] if args.variant != "scalar_rgb" else []))
                              .encode() + scene_bytes).hexdigest()[:16]
         if args.ref_threads != 1:
             dr.set_thread_count(args.ref_threads)
