@@ -16,11 +16,12 @@ use raytracer::geometry::Shape;
 use raytracer::image_io::encode_image;
 use raytracer::integrator::IntegratorKind;
 use raytracer::render::{render_with_accel, RenderOptions};
-use raytracer::scene::{load, LoadOptions, RenderMode, Scene, Variant};
+use raytracer::scene::{load, RenderMode, Scene, Variant};
 
 use crate::batch::summary::json_string;
 use crate::exit_code::{self, Failure};
 use crate::image_flags::ImageFlags;
+use crate::load_flags::LoadFlags;
 use crate::values;
 
 #[derive(Parser, Debug)]
@@ -37,18 +38,11 @@ struct CheckCli {
     /// The render's flags: the estimate is for the render they ask for.
     #[command(flatten)]
     image: ImageFlags,
-    /// The render's image width (keeps the aspect ratio unless --height is also given).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
-    width: Option<u32>,
-    /// The render's image height.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
-    height: Option<u32>,
+    #[command(flatten)]
+    load: LoadFlags,
     /// The render's worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
     threads: Option<u64>,
-    /// Extra folder to resolve texture and mesh paths against (repeatable).
-    #[arg(long = "asset-dir")]
-    asset_dirs: Vec<PathBuf>,
     /// No estimate: load and report only.
     #[arg(long)]
     no_estimate: bool,
@@ -133,13 +127,7 @@ pub(super) fn try_parse(args: &[OsString]) -> Result<(), clap::Error> {
 
 /// Loads `path` and, unless told not to, estimates its render.
 fn check(cli: &CheckCli, path: &Path) -> Report {
-    let options = LoadOptions {
-        width: cli.width,
-        height: cli.height,
-        asset_dirs: cli.asset_dirs.clone(),
-        max_memory: raytracer::memory::available(),
-        ..LoadOptions::default()
-    };
+    let options = cli.load.options();
     let start = Instant::now();
     let loaded = load(path, &options).map(|mut scene| {
         let load_time = start.elapsed();

@@ -37,6 +37,7 @@ mod compare;
 mod exit_code;
 mod image_flags;
 mod interrupt;
+mod load_flags;
 mod merge;
 mod render;
 mod study;

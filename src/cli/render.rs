@@ -12,11 +12,12 @@ use raytracer::film::{Film, PixelRect, ToneMap};
 use raytracer::image_io::{encode_image, OutputFormat};
 use raytracer::parts::{self, Part};
 use raytracer::render::{render, RenderError, RenderOptions, RenderOutput};
-use raytracer::scene::{load, LoadOptions, Scene};
+use raytracer::scene::{load, Scene};
 
 use super::exit_code::{self, Failure};
 use super::image_flags::ImageFlags;
 use super::interrupt::Interrupt;
+use super::load_flags::LoadFlags;
 use super::values;
 
 #[derive(Parser, Debug)]
@@ -36,52 +37,11 @@ struct RenderCli {
     output: PathBuf,
     #[command(flatten)]
     image: ImageFlags,
-    /// Override the image width (keeps the aspect ratio unless --height is also given).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
-    width: Option<u32>,
-    /// Override the image height.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
-    height: Option<u32>,
+    #[command(flatten)]
+    load: LoadFlags,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
     threads: Option<u64>,
-    /// Extra folder to resolve texture and mesh paths against (repeatable).
-    #[arg(long = "asset-dir")]
-    asset_dirs: Vec<PathBuf>,
-    /// Refuse images with more pixels than this.
-    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_PIXELS)]
-    max_pixels: u64,
-    /// Refuse scenes whose nbounces is larger than this.
-    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_BOUNCES)]
-    max_bounces: u32,
-    /// Refuse scenes with more triangles than this.
-    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_TRIANGLES)]
-    max_triangles: usize,
-    /// Refuse area lights that take more shadow rays per shading point than this.
-    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_LIGHT_SAMPLES)]
-    max_light_samples: u32,
-    /// Refuse scenes that ask for more samples per pixel than this (`pixelsample` and its
-    /// spellings; --spp is not limited by it).
-    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_PIXEL_SAMPLES)]
-    max_pixel_samples: u32,
-    /// Refuse scene files larger than this many bytes (checked before reading; the parsed
-    /// document takes about ten times the file's size).
-    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_SCENE_BYTES)]
-    max_scene_bytes: u64,
-    /// Refuse textures with more texels (width × height) than this, read from the image's header
-    /// before decoding (a texture takes 3 bytes a texel from an 8-bit image, 12 from a 16-bit or
-    /// EXR one; the default is 8192², 192 or 768 MiB).
-    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_TEXTURE_PIXELS)]
-    max_texture_pixels: u64,
-    /// Refuse mesh files (PLY, OBJ) larger than this many bytes; they are read whole.
-    #[arg(long, default_value_t = raytracer::scene::load::DEFAULT_MAX_MESH_BYTES)]
-    max_mesh_bytes: u64,
-    /// Refuse mesh files whose triangles and vertices would need more than this many bytes to
-    /// load and trace (about 200 a triangle), checked from their counts before they are read.
-    /// Default: the memory the process can have (available memory and swap, within its
-    /// address-space limit).
-    #[arg(long, value_name = "BYTES")]
-    max_memory: Option<u64>,
     /// Render only the pixels x ∈ [X0, X1), y ∈ [Y0, Y1) (origin top left) of the image, as an
     /// EXR tile for `raytracer merge` (the output must be .exr).
     #[arg(long, value_name = "X0,Y0,X1,Y1", conflicts_with = "tile")]
@@ -195,20 +155,7 @@ fn check_output(cli: &RenderCli) -> Result<bool, Failure> {
 /// and shows its warnings (errors with `--strict`).
 fn load_scene(cli: &RenderCli) -> Result<Scene, Failure> {
     Outputs::from_inputs([cli.scene.as_path()]).claim(&cli.output)?;
-    let load_options = LoadOptions {
-        width: cli.width,
-        height: cli.height,
-        asset_dirs: cli.asset_dirs.clone(),
-        max_pixels: cli.max_pixels,
-        max_bounces: cli.max_bounces,
-        max_triangles: cli.max_triangles,
-        max_light_samples: cli.max_light_samples,
-        max_pixel_samples: cli.max_pixel_samples,
-        max_scene_bytes: cli.max_scene_bytes,
-        max_texture_pixels: cli.max_texture_pixels,
-        max_mesh_bytes: cli.max_mesh_bytes,
-        max_memory: cli.max_memory.or_else(raytracer::memory::available),
-    };
+    let load_options = cli.load.options();
     let scene = load(&cli.scene, &load_options).map_err(|e| Failure::Input(e.to_string()))?;
     if cli.strict {
         super::strict(&scene)?;

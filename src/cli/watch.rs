@@ -16,11 +16,12 @@ use notify::Watcher as _;
 use raytracer::files::shown;
 use raytracer::image_io::encode_image;
 use raytracer::render::{render, RenderOptions};
-use raytracer::scene::{load, LoadOptions, Scene};
+use raytracer::scene::{load, Scene};
 
 use crate::batch::summary::json_string;
 use crate::exit_code::{self, Failure};
 use crate::image_flags::ImageFlags;
+use crate::load_flags::LoadFlags;
 use crate::values;
 
 /// The page the server shows.
@@ -50,18 +51,11 @@ struct WatchCli {
     port: u16,
     #[command(flatten)]
     image: ImageFlags,
-    /// Override the image width (keeps the aspect ratio unless --height is also given).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
-    width: Option<u32>,
-    /// Override the image height.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
-    height: Option<u32>,
+    #[command(flatten)]
+    load: LoadFlags,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
     threads: Option<u64>,
-    /// Extra folder to resolve texture and mesh paths against (repeatable).
-    #[arg(long = "asset-dir")]
-    asset_dirs: Vec<PathBuf>,
 }
 
 /// What the page shows: the latest image and what it is.
@@ -194,7 +188,7 @@ fn render_loop(cli: &WatchCli, shown_now: &Mutex<Shown>, signals: &Signals) {
     while !signals.stop.load(Ordering::Relaxed) {
         signals.changed.store(false, Ordering::Relaxed);
         set(shown_now, |s| s.status = "reading the scene".into());
-        let loaded = load(&cli.scene, &load_options(cli));
+        let loaded = load(&cli.scene, &cli.load.options());
         let inputs = match &loaded {
             Ok(scene) => scene.inputs.clone(),
             Err(_) => vec![cli.scene.clone()],
@@ -214,17 +208,6 @@ fn render_loop(cli: &WatchCli, shown_now: &Mutex<Shown>, signals: &Signals) {
             std::thread::sleep(TICK);
         }
         std::thread::sleep(SETTLE);
-    }
-}
-
-/// The scene's load options from the flags.
-fn load_options(cli: &WatchCli) -> LoadOptions {
-    LoadOptions {
-        width: cli.width,
-        height: cli.height,
-        asset_dirs: cli.asset_dirs.clone(),
-        max_memory: raytracer::memory::available(),
-        ..LoadOptions::default()
     }
 }
 
