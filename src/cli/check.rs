@@ -12,7 +12,6 @@ use clap::Parser;
 use raytracer::accel::Accel;
 use raytracer::files::shown;
 use raytracer::film::{Film, ToneMap};
-use raytracer::geometry::Shape;
 use raytracer::image_io::encode_image;
 use raytracer::integrator::IntegratorKind;
 use raytracer::render::{render_with_accel, RenderOptions};
@@ -51,9 +50,8 @@ struct CheckCli {
     json: bool,
 }
 
-/// The estimate's stated range, as factors of the estimate: the measured ratios of real render
-/// time to the estimate lie between these on the bundled scenes and the corpus sample
-/// (`docs/check.md`).
+/// The estimate's stated range, as factors of the estimate (`docs/check.md` compares it with
+/// real renders).
 const RANGE: (f64, f64) = (0.5, 2.0);
 
 /// The timed sample renders grow until one takes at least this long.
@@ -148,11 +146,6 @@ fn check(cli: &CheckCli, path: &Path) -> Report {
 
 /// What `scene` holds and how `render` would render it.
 fn summary(scene: &Scene, render: &RenderOptions, estimate: Option<Estimate>) -> Summary {
-    let triangles = scene
-        .primitives
-        .iter()
-        .filter(|p| matches!(p.shape, Shape::Triangle(_)))
-        .count();
     let textures = scene
         .textures
         .iter()
@@ -178,7 +171,7 @@ fn summary(scene: &Scene, render: &RenderOptions, estimate: Option<Estimate>) ->
         adaptive: render.adaptive.is_some(),
         bounces: scene.nbounces,
         primitives: scene.primitives.len(),
-        triangles,
+        triangles: scene.primitives.triangle_count(),
         lights: scene.lights.len(),
         textures,
         warnings: scene.warnings.iter().map(ToString::to_string).collect(),

@@ -263,6 +263,19 @@ impl Primitives {
         }
     }
 
+    /// How many of the primitives are triangles (every face of a mesh stored as a run is one).
+    pub fn triangle_count(&self) -> usize {
+        self.spans()
+            .map(|(_, count, source)| match source {
+                Source::Records { first } => self.records[first..first + count]
+                    .iter()
+                    .filter(|r| matches!(r.shape, Shape::Triangle(_)))
+                    .count(),
+                Source::Faces { .. } => count,
+            })
+            .sum()
+    }
+
     /// The box of every bounded shape ([`Aabb::EMPTY`] where there is none).
     pub fn bounds(&self) -> Aabb {
         let mut bounds = Aabb::EMPTY;

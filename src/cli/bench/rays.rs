@@ -1,9 +1,7 @@
 //! Ray throughput: camera, shadow and incoherent ray sets of a sphere grid traced by each tree,
 //! and their export for other tracers. The rays are pure functions of the scene and a seed.
 
-use super::scenes::{
-    grid_light, primitive_bytes, sphere_grid, triangle_count, with_lights, LightVariant,
-};
+use super::scenes::{grid_light, primitive_bytes, sphere_grid, with_lights, LightVariant};
 use super::timing::timed;
 use std::path::Path;
 use std::time::Duration;
@@ -255,7 +253,7 @@ pub fn throughput(
     Ok(Throughput {
         g,
         s,
-        triangles: triangle_count(&scene),
+        triangles: scene.primitives.triangle_count(),
         build_median_split,
         primitive_bytes: primitive_bytes(&scene),
         mesh_bytes: scene.primitives.mesh_bytes(),

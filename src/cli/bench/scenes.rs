@@ -182,15 +182,6 @@ pub fn primitive_bytes(scene: &Scene) -> usize {
     scene.primitives.record_bytes()
 }
 
-/// Number of triangle primitives.
-pub fn triangle_count(scene: &Scene) -> usize {
-    scene
-        .primitives
-        .iter()
-        .filter(|p| matches!(p.shape, Shape::Triangle(_)))
-        .count()
-}
-
 /// The lights of a benchmark scene: its own kinds, or all point or all area lights.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LightVariant {
@@ -359,7 +350,7 @@ mod tests {
         assert_eq!(sphere_grid_triangles(32, 64), 8_388_610);
         let scene = sphere_grid(4, 16, 8, 6);
         assert_eq!(scene.primitives.len(), 8_194);
-        assert_eq!(triangle_count(&scene), 8_194);
+        assert_eq!(scene.primitives.triangle_count(), 8_194);
     }
 
     #[test]

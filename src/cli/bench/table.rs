@@ -1,6 +1,6 @@
 //! Table 1: every bundled and grid scene rendered with every accelerator, point and area lights.
 
-use super::scenes::{primitive_bytes, sphere_grid, triangle_count, with_lights, LightVariant};
+use super::scenes::{primitive_bytes, sphere_grid, with_lights, LightVariant};
 use super::timing::{ms, timed};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -174,7 +174,7 @@ fn table_row(
     let mut row = TableRow {
         scene: name.to_string(),
         primitives: scene.primitives.len(),
-        triangles: triangle_count(scene),
+        triangles: scene.primitives.triangle_count(),
         width: scene.camera.width,
         height: scene.camera.height,
         light,
