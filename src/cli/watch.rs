@@ -75,8 +75,10 @@ struct Shown {
 struct Signals {
     /// Ctrl-C came: everything stops.
     stop: Arc<AtomicBool>,
-    /// A watched file changed since the scene was last read; also stops the render under way.
+    /// A watched file changed since the scene was last read.
     changed: Arc<AtomicBool>,
+    /// The render under way stops: set with either of the others, cleared with `changed`.
+    cancel: Arc<AtomicBool>,
 }
 
 /// Runs `raytracer watch` (`args` start with `watch`) and returns its exit status.
@@ -108,8 +110,11 @@ fn run(cli: WatchCli) -> Result<(), Failure> {
         shown(&cli.scene)
     );
     let signals = Signals::default();
-    let stop = signals.stop.clone();
-    let _ = ctrlc::set_handler(move || stop.store(true, Ordering::Relaxed));
+    let (stop, cancel) = (signals.stop.clone(), signals.cancel.clone());
+    let _ = ctrlc::set_handler(move || {
+        stop.store(true, Ordering::Relaxed);
+        cancel.store(true, Ordering::Relaxed);
+    });
     let shown_now = Arc::new(Mutex::new(Shown::default()));
     let name = shown(&cli.scene).to_string();
     let renderer = {
@@ -169,12 +174,17 @@ fn state_json(shown: &Shown, name: &str) -> String {
 fn render_loop(cli: &WatchCli, shown_now: &Mutex<Shown>, signals: &Signals) {
     let watched = Arc::new(Mutex::new(Vec::<PathBuf>::new()));
     let watcher = {
-        let (watched, changed) = (watched.clone(), signals.changed.clone());
+        let (watched, changed, cancel) = (
+            watched.clone(),
+            signals.changed.clone(),
+            signals.cancel.clone(),
+        );
         notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
             let Ok(event) = event else { return };
             let files = watched.lock().unwrap_or_else(|e| e.into_inner());
             if event.paths.iter().any(|p| files.contains(p)) {
                 changed.store(true, Ordering::Relaxed);
+                cancel.store(true, Ordering::Relaxed);
             }
         })
     };
@@ -187,6 +197,9 @@ fn render_loop(cli: &WatchCli, shown_now: &Mutex<Shown>, signals: &Signals) {
     let mut folders: Vec<PathBuf> = Vec::new();
     while !signals.stop.load(Ordering::Relaxed) {
         signals.changed.store(false, Ordering::Relaxed);
+        if !signals.stop.load(Ordering::Relaxed) {
+            signals.cancel.store(false, Ordering::Relaxed);
+        }
         set(shown_now, |s| s.status = "reading the scene".into());
         let loaded = load(&cli.scene, &cli.load.options());
         let inputs = match &loaded {
@@ -252,36 +265,17 @@ fn render_passes(cli: &WatchCli, scene: &Scene, shown_now: &Mutex<Shown>, signal
     let last = base.spp.max(LEAST_FINAL_SPP);
     let tone_map = cli.image.tone_map(scene);
     let exposure = cli.image.display_exposure(scene);
-    let cancel = Arc::new(AtomicBool::new(false));
     let mut spp = 1;
     loop {
         set(shown_now, |s| {
             s.status = format!("rendering {spp} sample{} a pixel", plural(spp))
         });
-        cancel.store(false, Ordering::Relaxed);
-        let done = Arc::new(AtomicBool::new(false));
         let options = RenderOptions {
             spp,
-            cancel: Some(cancel.clone()),
+            cancel: Some(signals.cancel.clone()),
             ..base.clone()
         };
-        let out = std::thread::scope(|s| {
-            let (cancel, finished) = (cancel.clone(), done.clone());
-            let guard = s.spawn(move || {
-                while !finished.load(Ordering::Relaxed) {
-                    if signals.changed.load(Ordering::Relaxed)
-                        || signals.stop.load(Ordering::Relaxed)
-                    {
-                        cancel.store(true, Ordering::Relaxed);
-                    }
-                    std::thread::sleep(TICK);
-                }
-            });
-            let out = render(scene, &options);
-            done.store(true, Ordering::Relaxed);
-            let _ = guard.join();
-            out
-        });
+        let out = render(scene, &options);
         let out = match out {
             Ok(out) if !out.cancelled => out,
             _ => return,
