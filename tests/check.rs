@@ -4,18 +4,15 @@
 
 mod common;
 
-use std::process::{Command, Output};
+use std::process::Output;
 
 use common::*;
 use jsonc_parser::JsonValue;
 
 fn check(args: &[&dyn AsRef<std::ffi::OsStr>]) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_raytracer"));
-    cmd.arg("check");
-    for a in args {
-        cmd.arg(a);
-    }
-    cmd.output().expect("run raytracer check")
+    let mut all: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![&"check"];
+    all.extend_from_slice(args);
+    raytracer(&all)
 }
 
 fn stdout(o: &Output) -> String {

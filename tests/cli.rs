@@ -4,21 +4,9 @@
 mod common;
 
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Command;
 
 use common::*;
-
-fn raytracer(args: &[&dyn AsRef<std::ffi::OsStr>]) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_raytracer"));
-    for a in args {
-        cmd.arg(a);
-    }
-    cmd.output().expect("run raytracer")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 const SMALL: &str = r#"{ "nbounces": 1,
   "camera": { "type": "pinhole", "width": 24, "height": 16, "fov": 40,

@@ -38,10 +38,6 @@ fn raytracer(args: &[&dyn AsRef<std::ffi::OsStr>]) -> Output {
     child.wait_with_output().expect("output")
 }
 
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
 /// The names in `dir`, sorted.
 fn names(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)

@@ -6,6 +6,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+use common::stderr;
 use raytracer::film::{to_rgb8, Film, PixelRect, ToneMap};
 use raytracer::parts::merge::{assemble, MergeError, Tile};
 use raytracer::parts::{self, exr, Part};
@@ -247,10 +248,6 @@ fn ok(o: &Output) {
         o.status,
         String::from_utf8_lossy(&o.stderr)
     );
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 /// A temporary folder with a copy of the bundled scene `name` as `scene.json`.

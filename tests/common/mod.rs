@@ -8,6 +8,20 @@ use raytracer::math::Vec3;
 use raytracer::render::{render, RenderOptions};
 use raytracer::scene::{load, load_str, LoadOptions, Scene};
 
+/// Runs the `raytracer` binary with `args`.
+pub fn raytracer(args: &[&dyn AsRef<std::ffi::OsStr>]) -> std::process::Output {
+    let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_raytracer"));
+    for a in args {
+        cmd.arg(a);
+    }
+    cmd.output().expect("run raytracer")
+}
+
+/// What a run of the binary printed on standard error.
+pub fn stderr(o: &std::process::Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
 /// Writes `json` as `scene.json` in a fresh temporary folder (kept alive by the returned guard).
 pub fn write_scene(json: &str) -> (tempfile::TempDir, PathBuf) {
     let dir = tempfile::tempdir().expect("temp dir");
