@@ -327,7 +327,6 @@ fn pinhole_film_and_light_points_are_stratified_together() {
         unbiased_variance(&values, truth)
     };
     let (shared, apart) = (stats(true), stats(false));
-    // 2.3× less at these settings.
     assert!(shared * 1.5 < apart, "{shared} against {apart}");
 }
 

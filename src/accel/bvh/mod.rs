@@ -54,8 +54,8 @@ pub const STACK_SIZE: usize = 128;
 
 /// Depth below which the SAH builder switches to median splits. A median split halves a node, so
 /// fewer than 2³² primitives need at most 32 more levels: trees stay within [`STACK_SIZE`].
-/// The benchmark scenes' SAH trees are about 20 levels deep, so this only bounds pathological
-/// inputs (a long run of ever larger primitives, where SAH peels one per level).
+/// SAH trees of ordinary scenes are far shallower, so this only bounds pathological inputs (a
+/// long run of ever larger primitives, where SAH peels one per level).
 const MAX_SAH_DEPTH: usize = 90;
 
 /// Bins per axis of the SAH builder: Wald (2007) found 16 bins within a few percent of the full
