@@ -11,6 +11,7 @@
 //! | `raytracer bench` | [`mod@bench`] |
 //! | `raytracer check SCENE...` | [`check`] |
 //! | `raytracer watch SCENE` | [`watch`] |
+//! | `raytracer schema` | [`schema`] |
 
 /// Writes to standard output like `print!`, but a closed pipe (`raytracer compare a b | head -1`)
 /// is not a panic: what cannot be printed is dropped, and the command's work and exit status go
@@ -40,6 +41,7 @@ mod interrupt;
 mod load_flags;
 mod merge;
 mod render;
+mod schema;
 mod study;
 mod values;
 mod watch;
@@ -52,7 +54,7 @@ use std::process::ExitCode;
 fn subcommand(args: &[OsString]) -> Option<&'static str> {
     let first = args.get(1)?;
     [
-        "batch", "bench", "check", "compare", "merge", "study", "watch",
+        "batch", "bench", "check", "compare", "merge", "schema", "study", "watch",
     ]
     .into_iter()
     .find(|name| first == name)
@@ -85,6 +87,7 @@ fn main() -> ExitCode {
         Some("check") => check::main(&args[1..]),
         Some("compare") => compare::main(&args[1..]),
         Some("merge") => merge::main(&args[1..]),
+        Some("schema") => schema::main(&args[1..]),
         Some("study") => study::main(&args[1..]),
         Some("watch") => watch::main(&args[1..]),
         _ => render::main(args),
@@ -100,6 +103,7 @@ pub fn try_parse(args: &[OsString]) -> Result<(), clap::Error> {
         Some("check") => check::try_parse(&args[1..]),
         Some("compare") => compare::try_parse(&args[1..]),
         Some("merge") => merge::try_parse(&args[1..]),
+        Some("schema") => schema::try_parse(&args[1..]),
         Some("study") => study::try_parse(&args[1..]),
         Some("watch") => watch::try_parse(&args[1..]),
         _ => render::try_parse(args),

@@ -38,6 +38,8 @@ pub const HARMLESS: &[&str] = &[
     "accelerator",
     // The output image (given on the command line).
     "output",
+    // The JSON Schema an editor checks the file against.
+    "$schema",
     // The model a shape was cut from, on shapes that are not meshes (a mesh's `model` is its file).
     "shapes.model",
     // A texture's size, read from the image itself.

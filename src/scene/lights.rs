@@ -27,7 +27,7 @@ use std::ops::Range;
 
 use super::error::{Location, SceneError, Warning};
 use super::json::Node;
-use super::load::spellings::{type_of, SHAPE_TYPES};
+use super::load::spellings::{self, type_of, SHAPE_TYPES};
 use super::load::{required, required_positive};
 use crate::geometry::{Primitive, Primitives, Shape};
 use crate::light::{cumulative_areas, Intensity, Light};
@@ -40,8 +40,8 @@ const LISTED_IDS: usize = 20;
 /// The sphere of a light's `"shape": {"type": "sphere", "center": …, "radius": …}`: the centre
 /// (`center`, `centre` or `position`) and a radius > 0.
 pub(super) fn sphere(shape: &Node) -> Result<(Vec3, f32), SceneError> {
-    let center = required(shape, &["center", "centre", "position"])?.vec3()?;
-    let radius = required_positive(shape, "radius")?;
+    let center = required(shape, spellings::shape::CENTRE)?.vec3()?;
+    let radius = required_positive(shape, spellings::shape::RADIUS)?;
     Ok((center, radius))
 }
 
@@ -57,7 +57,7 @@ pub(super) fn flat_corners(kind: &str) -> Option<usize> {
 
 /// A shape's `type`, lower case (empty when it has none or it is not a string).
 fn shape_kind(s: &Node) -> String {
-    s.get("type")
+    s.get_any(spellings::shape::TYPE)
         .and_then(|n| n.str().ok().map(str::to_ascii_lowercase))
         .unwrap_or_default()
 }
@@ -125,7 +125,10 @@ impl ShapeLights {
 
     /// Records the shape `s`, whose primitives are `primitives`, if it has a string `id`.
     pub(super) fn note_shape(&mut self, s: &Node, primitives: Range<usize>) {
-        let Some(id) = s.get("id").and_then(|n| n.str().ok().map(str::to_string)) else {
+        let Some(id) = s
+            .get_any(spellings::shape::ID)
+            .and_then(|n| n.str().ok().map(str::to_string))
+        else {
             return;
         };
         let kind = shape_kind(s);

@@ -11,6 +11,7 @@ pub mod load;
 pub mod mesh_file;
 pub mod poly_sphere;
 pub mod rectangle;
+pub mod schema;
 pub mod transform;
 
 pub use error::{SceneError, Warning};

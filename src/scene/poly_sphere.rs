@@ -12,6 +12,7 @@
 
 use super::error::SceneError;
 use super::json::Node;
+use super::load::spellings::shape;
 use super::mesh_file::MeshData;
 use crate::math::{Vec2, Vec3};
 
@@ -26,9 +27,9 @@ pub const MAX_COUNT: u32 = 256;
 /// Whether `s` is written in this form: none of the vertex keys of an inline mesh, and the
 /// count `n` with a centre key.
 pub fn applies(s: &Node) -> bool {
-    s.peek("n").is_some()
-        && s.contains_any(&["locX", "locY", "locZ"])
-        && !s.contains_any(&["vertices", "vs", "vertex", "points", "triangles"])
+    s.contains_any(shape::SPHERE_COUNT)
+        && shape::SPHERE_CENTRE.iter().any(|k| s.contains_any(k))
+        && !s.contains_any(shape::INLINE_VERTICES)
 }
 
 /// Triangles of [`uv_sphere`] with `divisions` bands: a row of `d` at each pole, `2d` in each of
@@ -41,23 +42,24 @@ pub fn triangle_count(divisions: u32) -> u64 {
 /// Reads the form and builds its meshes, one [`MeshData`] per sphere, unless they would hold
 /// more than `max_triangles` (checked before anything is built).
 pub fn read(s: &Node, max_triangles: usize) -> Result<Vec<MeshData>, SceneError> {
-    let coord = |k: &str| -> Result<f32, SceneError> {
-        s.get(k)
+    let coord = |k: &[&str]| -> Result<f32, SceneError> {
+        s.get_any(k)
             .map(|n| n.f32())
             .transpose()
             .map(|v| v.unwrap_or(0.0))
     };
-    let center = Vec3::new(coord("locX")?, coord("locY")?, coord("locZ")?);
-    let scale = match s.get("scale") {
+    let [x, y, z] = shape::SPHERE_CENTRE;
+    let center = Vec3::new(coord(x)?, coord(y)?, coord(z)?);
+    let scale = match s.get_any(shape::SCALE) {
         Some(n) => n.f32()?,
         None => 1.0,
     };
     let radius = BASE_RADIUS * scale;
     if radius <= 0.0 {
-        let at = s.get("scale").unwrap_or_else(|| s.clone());
+        let at = s.get_any(shape::SCALE).unwrap_or_else(|| s.clone());
         return Err(at.error(format!("the scale must be > 0, found {scale}")));
     }
-    let count_node = s.get("n").unwrap_or_else(|| s.clone());
+    let count_node = s.get_any(shape::SPHERE_COUNT).unwrap_or_else(|| s.clone());
     let count = count_node.u32()?;
     if count == 0 || count > MAX_COUNT {
         return Err(count_node.error(format!(

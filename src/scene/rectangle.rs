@@ -16,6 +16,7 @@
 
 use super::error::SceneError;
 use super::json::Node;
+use super::load::spellings::shape;
 use crate::math::{Vec2, Vec3};
 
 /// The shape types of this module (lower case, as the loader compares them).
@@ -35,7 +36,7 @@ pub fn read(s: &Node, kind: &str) -> Result<Rectangle, SceneError> {
         "rectanglexz" => (0, 2, 1),
         _ => (1, 2, 0),
     };
-    let names = ["x", "y", "z"];
+    let names = shape::RECTANGLE_AXES;
     let range = |axis: usize| -> Result<(f32, f32), SceneError> {
         let lo_key = format!("{}0", names[axis]);
         let hi_key = format!("{}1", names[axis]);
@@ -51,7 +52,7 @@ pub fn read(s: &Node, kind: &str) -> Result<Rectangle, SceneError> {
     };
     let (a0, a1) = range(a)?;
     let (b0, b1) = range(b)?;
-    let k = match s.get_any(&[names[c], "k"]) {
+    let k = match s.get_any(&[names[c], shape::RECTANGLE_LEVEL[0]]) {
         Some(n) => n.f32()?,
         None => {
             return Err(s.error(format!(

@@ -21,6 +21,7 @@
 
 use super::error::SceneError;
 use super::json::Node;
+use super::load::spellings::shape;
 use glam::Mat3;
 
 use crate::math::Vec3;
@@ -85,27 +86,26 @@ pub fn euler_degrees(angles: Vec3) -> Mat3 {
     rz * ry * rx
 }
 
-/// Keys of Euler angles in degrees, in the order they are looked for.
-pub const EULER_KEYS: [&str; 3] = ["euler", "rotation", "rot"];
-
-/// The rotation a shape gives with [`EULER_KEYS`], or `r1`, `r2`, `r3`; `None` if it gives none.
+/// The rotation a shape gives with Euler angles ([`shape::EULER`]), or rows `r1`, `r2`, `r3`;
+/// `None` if it gives none.
 pub fn rotation(s: &Node) -> Result<Option<Mat3>, SceneError> {
-    if let Some(n) = s.get_any(&EULER_KEYS) {
+    if let Some(n) = s.get_any(shape::EULER) {
         return Ok(Some(euler_degrees(n.vec3()?)));
     }
-    if let Some(r1) = s.get("r1") {
-        let row = |k: &str| -> Result<Vec3, SceneError> {
-            match s.get(k) {
+    let [r1, r2, r3] = shape::ROTATION_ROWS;
+    if let Some(first) = s.get_any(r1) {
+        let row = |k: &[&str]| -> Result<Vec3, SceneError> {
+            match s.get_any(k) {
                 Some(n) => n.vec3(),
-                None => Err(s.error(format!("'r1' is given but '{k}' is missing"))),
+                None => Err(s.error(format!("'{}' is given but '{}' is missing", r1[0], k[0]))),
             }
         };
-        let rows = [r1.vec3()?, row("r2")?, row("r3")?];
+        let rows = [first.vec3()?, row(r2)?, row(r3)?];
         // Row vector times the matrix of rows: the rows are the images of the axes, i.e. the
         // columns of the column-vector matrix.
         let m = Mat3::from_cols(rows[0], rows[1], rows[2]);
         if m.determinant() == 0.0 {
-            return Err(r1.error("the rows r1, r2, r3 are linearly dependent (determinant 0)"));
+            return Err(first.error("the rows r1, r2, r3 are linearly dependent (determinant 0)"));
         }
         return Ok(Some(m));
     }
@@ -116,19 +116,12 @@ pub fn rotation(s: &Node) -> Result<Option<Mat3>, SceneError> {
 /// ([`rotation`]), then the translation (`position`, `pos`, `offset`, `translate`,
 /// `translation`, `center`).
 pub fn mesh_placement(s: &Node) -> Result<Affine, SceneError> {
-    let scale = match s.get_any(&["scale", "sizeScale", "size"]) {
+    let scale = match s.get_any(shape::SCALE) {
         Some(n) => n.color()?,
         None => Vec3::ONE,
     };
     let rot = rotation(s)?.unwrap_or(Mat3::IDENTITY);
-    let translation = match s.get_any(&[
-        "position",
-        "pos",
-        "offset",
-        "translate",
-        "translation",
-        "center",
-    ]) {
+    let translation = match s.get_any(shape::TRANSLATION) {
         Some(n) => n.vec3()?,
         None => Vec3::ZERO,
     };

@@ -1,6 +1,6 @@
 //! The camera: pose, field of view, image size, exposure and lens.
 
-use super::spellings::{camera, type_names, type_of, CAMERA_TYPES};
+use super::spellings::{camera, scene, type_names, type_of, CAMERA_TYPES};
 use super::{is_cgr, nearest, opt_f32, opt_vec3, required, Loader};
 use crate::camera::{Camera, Handedness, Lens};
 use crate::math::Vec3;
@@ -53,11 +53,11 @@ impl Loader<'_> {
     fn is_thin_lens(&mut self, root: &Node, cam: &Node) -> Result<bool, SceneError> {
         // A top-level `use_dof` (with `aperture` and `focus_distance` beside it) turns the
         // camera into a thin lens, as the files of one CGR renderer write it.
-        let use_dof = match root.get("use_dof") {
+        let use_dof = match root.get_any(scene::USE_DOF) {
             Some(n) => n.bool()?,
             None => false,
         };
-        Ok(match cam.get("type") {
+        Ok(match cam.get_any(camera::TYPE) {
             _ if use_dof => true,
             None => false,
             Some(t) => match type_of(CAMERA_TYPES, t.str()?) {
@@ -82,13 +82,13 @@ impl Loader<'_> {
     /// The image's width and height: the file's (from the camera or a `settings` object),
     /// overridden by the options, checked against the pixel limit.
     fn image_size(&self, root: &Node, cam: &Node) -> Result<(u32, u32), SceneError> {
-        let settings = root.get("settings").filter(|n| n.is_object());
+        let settings = root.get_any(scene::SETTINGS).filter(|n| n.is_object());
         let size_holder = match &settings {
-            Some(st) if !cam.has_any(&["width"]) && st.has_any(&["width"]) => st.clone(),
+            Some(st) if !cam.has_any(camera::WIDTH) && st.has_any(camera::WIDTH) => st.clone(),
             _ => cam.clone(),
         };
-        let width_node = required(&size_holder, &["width"])?;
-        let height_node = required(&size_holder, &["height"])?;
+        let width_node = required(&size_holder, camera::WIDTH)?;
+        let height_node = required(&size_holder, camera::HEIGHT)?;
         let (w0, h0) = (width_node.u32()?, height_node.u32()?);
         if w0 == 0 || h0 == 0 {
             let n = if w0 == 0 { &width_node } else { &height_node };
@@ -132,8 +132,9 @@ impl Loader<'_> {
         }
         let position = opt_vec3(cam, camera::POSITION)?;
         let look = cam.get_any(camera::LOOK);
-        let looks_at_point = look.as_ref().is_some_and(|n| n.key() != Some("lookat"));
-        let direction = if let Some(n) = look.clone().filter(|n| n.key() == Some("lookat")) {
+        let is_direction = |n: &Node| n.key() == Some(camera::DIRECTION);
+        let looks_at_point = look.as_ref().is_some_and(|n| !is_direction(n));
+        let direction = if let Some(n) = look.clone().filter(is_direction) {
             // The 2021–23 skeleton's `lookat`, spelled just so, is a direction, not a point;
             // every other spelling (CGR's `lookAt`) is the point looked at. Some files write a
             // target point in `lookat`; a zero direction can only mean that.
@@ -197,7 +198,7 @@ impl Loader<'_> {
         if cam.contains_any(camera::FOCAL_LENGTH) && cam.contains_any(camera::IMAGE_DISTANCE) {
             let f = required(cam, camera::FOCAL_LENGTH)?.f32()?;
             let d = required(cam, camera::IMAGE_DISTANCE)?.f32()?;
-            let n_node = required(cam, &["aperture", "fstop", "fnumber"])?;
+            let n_node = required(cam, camera::LENS_F_NUMBER)?;
             let n = n_node.f32()?;
             if !(f > 0.0 && d > f && n > 0.0) {
                 return Err(cam.error(format!(
@@ -239,16 +240,16 @@ impl Loader<'_> {
         } else if let Some(d) = opt_f32(cam, camera::LENS_DIAMETER)? {
             Some(0.5 * d)
         } else if thin_lens {
-            opt_f32(root, &["aperture"])?.map(|d| 0.5 * d)
+            opt_f32(root, scene::LENS_DIAMETER)?.map(|d| 0.5 * d)
         } else {
-            root.mark_read(&["aperture"]);
+            root.mark_read(scene::LENS_DIAMETER);
             None
         };
         let focus = match opt_f32(cam, camera::FOCUS)? {
             Some(f) => Some(f),
-            None if thin_lens => opt_f32(root, &["focusdistance"])?,
+            None if thin_lens => opt_f32(root, scene::FOCUS)?,
             None => {
-                root.mark_read(&["focusdistance"]);
+                root.mark_read(scene::FOCUS);
                 None
             }
         };
@@ -320,7 +321,7 @@ fn fov_y(cam: &Node, aspect: f32) -> Result<f32, SceneError> {
         }
         Ok(2.0 * ((0.5 * f.to_radians()).tan() / aspect).atan().to_degrees())
     } else {
-        Err(required(cam, &["fov", "hfov"])
+        Err(required(cam, camera::ANY_FOV)
             .err()
             .unwrap_or_else(|| cam.error("missing fov")))
     }

@@ -21,7 +21,7 @@ impl Loader<'_> {
         if !l.is_object() {
             return Err(l.error(format!("a light is an object, found {}", l.kind())));
         }
-        let type_node = required(l, &["type"])?;
+        let type_node = required(l, light::TYPE)?;
         let name = type_node.str()?;
         let Some(kind) = type_of(LIGHT_TYPES, name) else {
             let near = nearest(name, &type_names(LIGHT_TYPES));
@@ -33,7 +33,7 @@ impl Loader<'_> {
             return Ok(());
         };
         if kind == "ambient" {
-            let n = required(l, &["intensity", "color", "colour"])?;
+            let n = required(l, light::AMBIENT_LEVEL)?;
             let a = non_negative_color(&n)?;
             self.ambient = Some(self.ambient.unwrap_or(Vec3::ZERO) + a);
             return Ok(());
@@ -65,7 +65,7 @@ impl Loader<'_> {
     /// A ball of light: a centre and a radius.
     fn sphere_light(&mut self, l: &Node, intensity: Intensity) -> Result<(), SceneError> {
         let center = required(l, light::POSITION)?.vec3()?;
-        let radius = required_positive(l, "radius")?;
+        let radius = required_positive(l, light::RADIUS)?;
         self.push_sphere_light(l, center, radius, intensity)
     }
 
@@ -93,7 +93,7 @@ impl Loader<'_> {
     /// light), sampled as a fan of [`DISC_SIDES`] triangles of the disc's own area.
     fn disc_light(&mut self, l: &Node, intensity: Intensity) -> Result<(), SceneError> {
         let center = required(l, light::POSITION)?.vec3()?;
-        let radius = required_positive(l, "radius")?;
+        let radius = required_positive(l, light::RADIUS)?;
         let normal = match l.get_any(light::NORMAL) {
             Some(n) => {
                 let v = n.vec3()?;
@@ -128,8 +128,14 @@ impl Loader<'_> {
     /// coefficients `kc`/`kl`/`kq` replace the fall-off in any variant.
     pub(super) fn intensity(&mut self, l: &Node) -> Result<Intensity, SceneError> {
         let attenuation = self.attenuation(l)?;
-        let is = l.get("is").map(|n| n.color()).transpose()?;
-        let id = l.get("id").map(|n| n.color()).transpose()?;
+        let is = l
+            .get_any(light::SPECULAR_INTENSITY)
+            .map(|n| n.color())
+            .transpose()?;
+        let id = l
+            .get_any(light::DIFFUSE_INTENSITY)
+            .map(|n| n.color())
+            .transpose()?;
         if is.is_some() || id.is_some() {
             let mut s = is.or(id).unwrap_or(Vec3::ONE);
             let mut d = id.or(is).unwrap_or(Vec3::ONE);
@@ -166,23 +172,21 @@ impl Loader<'_> {
             None => Vec3::ONE,
         };
         let tint = l
-            .get_any(&["color", "colour"])
+            .get_any(light::COLOUR)
             .map(|n| n.color())
             .transpose()?
             .unwrap_or(Vec3::ONE);
         let diffuse = l
-            .get("diffuse")
+            .get_any(light::DIFFUSE)
             .map(|n| n.color())
             .transpose()?
             .unwrap_or(Vec3::ONE);
         let specular = l
-            .get("specular")
+            .get_any(light::SPECULAR)
             .map(|n| n.color())
             .transpose()?
             .unwrap_or(diffuse);
-        if l.get_any(&["intensity", "power", "color", "colour", "diffuse"])
-            .is_none()
-        {
+        if !l.has_any(light::INTENSITY) && !l.has_any(light::COLOUR) && !l.has_any(light::DIFFUSE) {
             self.warn(
                 l,
                 "the light gives no intensity ('is'/'id' or 'intensity'); using 1",
@@ -203,15 +207,15 @@ impl Loader<'_> {
     /// A light's attenuation coefficients `kc`, `kl`, `kq` (`1/(kc + kl·d + kq·d²)`), if it gives
     /// any; those it leaves out are 1, 0 and 0 (no fall-off).
     pub(super) fn attenuation(&self, l: &Node) -> Result<Option<Falloff>, SceneError> {
-        if !l.has_any(&["kc", "kl", "kq"]) {
+        if !light::ATTENUATION.iter().any(|keys| l.contains_any(keys)) {
             return Ok(None);
         }
         let mut k = [1.0, 0.0, 0.0];
-        for (slot, key) in k.iter_mut().zip(["kc", "kl", "kq"]) {
-            if let Some(n) = l.get(key) {
+        for (slot, keys) in k.iter_mut().zip(light::ATTENUATION) {
+            if let Some(n) = l.get_any(keys) {
                 let v = n.f32()?;
                 if v < 0.0 {
-                    return Err(n.error(format!("{key} must be ≥ 0, found {v}")));
+                    return Err(n.error(format!("{} must be ≥ 0, found {v}", keys[0])));
                 }
                 *slot = v;
             }
@@ -235,9 +239,9 @@ impl Loader<'_> {
         } else if l.contains_any(light::POSITION) && l.contains_any(light::RADIUS) {
             // A centre and a radius: a ball of light.
             return self.sphere_light(l, intensity);
-        } else if let Some(shape) = l.get("shape") {
+        } else if let Some(shape) = l.get_any(light::SHAPE) {
             return self.shaped_area_light(l, &shape, intensity);
-        } else if let Some(id) = l.get("shapeid") {
+        } else if let Some(id) = l.get_any(light::SHAPE_ID) {
             let (samples, method) = self.area_sampling(l)?;
             self.shape_lights
                 .want(self.lights.len(), &id, intensity, samples, method)?;
@@ -273,7 +277,7 @@ impl Loader<'_> {
         };
         let (samples, method) = self.area_sampling(l)?;
         let mut light = Light::quad(origin, edge_u, edge_v, intensity, samples, method);
-        if let Some(n) = l.get("normal") {
+        if let Some(n) = l.get_any(light::NORMAL) {
             let v = n.vec3()?;
             if v == Vec3::ZERO {
                 return Err(n.error("an area light's normal must not be zero"));
@@ -300,7 +304,7 @@ impl Loader<'_> {
                 shape.kind()
             )));
         }
-        let type_node = required(shape, &["type"])?;
+        let type_node = required(shape, super::spellings::shape::TYPE)?;
         let kind = type_node.str()?.to_ascii_lowercase();
         if type_of(SHAPE_TYPES, &kind) == Some("sphere") {
             let (center, radius) = lights::sphere(shape)?;
@@ -365,14 +369,15 @@ impl Loader<'_> {
 /// or `c1`..`c3`), a corner and two edges, two edges about its centre, or a centre and a `size`;
 /// `None` if it is given in none of these forms.
 fn light_quad(l: &Node) -> Result<Option<(Vec3, Vec3, Vec3)>, SceneError> {
-    let corner = |k: &str| l.get(k).map(|n| n.vec3()).transpose();
     let any = |k: &[&str]| l.get_any(k).map(|n| n.vec3()).transpose();
-    let quad = if let (Some(a), Some(b), Some(c)) = (corner("v0")?, corner("v1")?, corner("v2")?) {
-        match corner("v3")? {
+    let [v0, v1, v2, v3] = light::CORNERS;
+    let [c1, c2, c3] = light::RIGHT_ANGLE_CORNERS;
+    let quad = if let (Some(a), Some(b), Some(c)) = (any(v0)?, any(v1)?, any(v2)?) {
+        match any(v3)? {
             Some(d) => quad_edges([a, b, c, d]),
             None => right_angle_corner(a, b, c),
         }
-    } else if let (Some(a), Some(b), Some(c)) = (corner("c1")?, corner("c2")?, corner("c3")?) {
+    } else if let (Some(a), Some(b), Some(c)) = (any(c1)?, any(c2)?, any(c3)?) {
         right_angle_corner(a, b, c)
     } else if let (Some(p), Some(e0), Some(e1)) = (
         any(light::CORNER)?,
@@ -386,7 +391,7 @@ fn light_quad(l: &Node) -> Result<Option<(Vec3, Vec3, Vec3)>, SceneError> {
         any(light::AXIS_V)?,
     ) {
         centred_quad(l, p, u, v)?
-    } else if let (Some(p), Some(size)) = (any(light::POSITION)?, l.get("size")) {
+    } else if let (Some(p), Some(size)) = (any(light::POSITION)?, l.get_any(light::SIZE)) {
         let (sw, sh) = match size.numbers() {
             Ok(v) if v.len() == 2 => (v[0] as f32, v[1] as f32),
             _ => {
@@ -407,8 +412,8 @@ fn light_quad(l: &Node) -> Result<Option<(Vec3, Vec3, Vec3)>, SceneError> {
 /// The parallelogram centred on `p` with edges `u`, `v`, or with `width`/`height` given, edges
 /// along `u`, `v` of those lengths.
 fn centred_quad(l: &Node, p: Vec3, u: Vec3, v: Vec3) -> Result<(Vec3, Vec3, Vec3), SceneError> {
-    let w = opt_f32(l, &["width"])?;
-    let h = opt_f32(l, &["height"])?;
+    let w = opt_f32(l, light::WIDTH)?;
+    let h = opt_f32(l, light::HEIGHT)?;
     let eu = match w {
         Some(w) => u.normalize_or_zero() * w,
         None => u,

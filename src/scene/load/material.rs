@@ -1,7 +1,7 @@
 //! Materials: the Blinn-Phong keys, the physically based types, emission.
 
 use super::spellings::texture;
-use super::spellings::{material, type_names, type_of, MATERIAL_TYPES};
+use super::spellings::{material, shape, type_names, type_of, MATERIAL_TYPES};
 use super::texture::Libraries;
 use super::{nearest, opt_f32, Loader, DEFAULT_ETA};
 use crate::material::{roughness_exponent, Material};
@@ -21,7 +21,7 @@ impl Loader<'_> {
         let node = material_node(s, libraries)?;
         // Whether `node` is a material object rather than the shape standing in for one (whose
         // `type` is the shape's).
-        let own_material = s.peek("material").is_some();
+        let own_material = s.contains_any(shape::MATERIAL);
         self.material_keys(&node, own_material, &mut m)?;
         self.material_texture(s, &node, mode, libraries, &mut m)?;
         self.materials.push(m);
@@ -42,23 +42,23 @@ impl Loader<'_> {
         phong_keys(n, m)?;
         self.mirror_weight(n, m)?;
         let eta_node = transmission(n, m)?;
-        for (name, v) in [
-            ("ka", m.ka),
-            ("kd", m.kd),
-            ("ks", m.ks),
-            ("kr", m.kr),
-            ("kt", m.kt),
+        for (keys, v) in [
+            (material::KA, m.ka),
+            (material::KD, m.kd),
+            (material::KS, m.ks),
+            (material::KR, m.kr),
+            (material::KT, m.kt),
         ] {
             if v < 0.0 {
-                let at = n.get(name).unwrap_or_else(|| n.clone());
-                return Err(at.error(format!("{name} must be ≥ 0, found {v}")));
+                let at = n.get_any(keys).unwrap_or_else(|| n.clone());
+                return Err(at.error(format!("{} must be ≥ 0, found {v}", keys[0])));
             }
         }
         Self::emission(n, m)?;
         // A metal's roughness is its own (see `material_kind`); any other material's blurs
         // its mirror part.
         let roughness_read = own_material && self.material_kind(n, m)?;
-        if let Some(r) = n.get("roughness").filter(|_| !roughness_read) {
+        if let Some(r) = n.get_any(material::ROUGHNESS).filter(|_| !roughness_read) {
             m.mirror_exponent = self.mirror_roughness(&r, m.kr)?;
         }
         // Checked once the material's `type` has said whether it transmits.
@@ -113,7 +113,7 @@ impl Loader<'_> {
     ) -> Result<(), SceneError> {
         node.mark_read(texture::TEXTURE);
         s.mark_read(texture::TEXTURE);
-        node.mark_read(&["diffuse"]);
+        node.mark_read(material::DIFFUSE_OR_TEXTURE);
         // A switch that turns the texture off leaves the diffuse colour alone.
         let switched_on = match node.get_any(texture::SWITCH) {
             Some(b) => b.bool()?,
@@ -122,7 +122,10 @@ impl Loader<'_> {
         if mode != RenderMode::Binary && switched_on {
             let tex_node = node
                 .get_any(texture::TEXTURE)
-                .or_else(|| node.get("diffuse").filter(|d| d.str().is_ok()))
+                .or_else(|| {
+                    node.get_any(material::DIFFUSE_OR_TEXTURE)
+                        .filter(|d| d.str().is_ok())
+                })
                 .or_else(|| s.get_any(texture::TEXTURE));
             if let Some(t) = tex_node {
                 m.texture = self.texture(&t, libraries)?;
@@ -165,7 +168,7 @@ impl Loader<'_> {
     /// emitted `colour` × `intensity`): see `docs/scene-format.md`, "Material types". Returns
     /// whether the type read `roughness` as its own (a metal's).
     pub(super) fn material_kind(&mut self, n: &Node, m: &mut Material) -> Result<bool, SceneError> {
-        let Some(t) = n.get("type") else {
+        let Some(t) = n.get_any(material::TYPE) else {
             return Ok(false);
         };
         let name = t.str()?;
@@ -183,10 +186,10 @@ impl Loader<'_> {
         match kind {
             "diffuse" => {
                 // The type's defaults, where the file gives no weight of its own.
-                if n.peek("kd").is_none() {
+                if !n.contains_any(material::KD) {
                     m.kd = 1.0;
                 }
-                if n.peek("ks").is_none() {
+                if !n.contains_any(material::KS) {
                     m.ks = 0.0;
                 }
             }
@@ -228,13 +231,13 @@ impl Loader<'_> {
                 }
             }
             "emissive" => {
-                let colour = match n.get_any(&["colour", "color", "emission", "emittance"]) {
+                let colour = match n.get_any(material::EMITTER_COLOUR) {
                     Some(c) => c.color()?,
                     None => Vec3::ONE,
                 };
-                let strength = opt_f32(n, &["intensity", "strength"])?.unwrap_or(1.0);
+                let strength = opt_f32(n, material::EMITTER_STRENGTH)?.unwrap_or(1.0);
                 if !(strength >= 0.0 && strength.is_finite()) {
-                    let at = n.get_any(&["intensity", "strength"]).unwrap_or(t);
+                    let at = n.get_any(material::EMITTER_STRENGTH).unwrap_or(t);
                     return Err(at.error(format!(
                         "an emitter's intensity must be a finite number ≥ 0, found {strength}"
                     )));
@@ -256,7 +259,7 @@ fn material_node<'a, 't>(
     s: &Node<'a, 't>,
     libraries: &Libraries<'a, 't>,
 ) -> Result<Node<'a, 't>, SceneError> {
-    let node = s.get("material").unwrap_or_else(|| s.clone());
+    let node = s.get_any(shape::MATERIAL).unwrap_or_else(|| s.clone());
     let Ok(named) = node.str() else {
         return Ok(node);
     };
@@ -279,13 +282,13 @@ fn material_node<'a, 't>(
 /// The Blinn-Phong weights `ka`, `kd`, `ks`, the specular exponent and the diffuse and specular
 /// colours (a `diffuse` string is a texture, read with the texture).
 fn phong_keys(n: &Node, m: &mut Material) -> Result<(), SceneError> {
-    if let Some(v) = opt_f32(n, &["ka"])? {
+    if let Some(v) = opt_f32(n, material::KA)? {
         m.ka = v;
     }
-    if let Some(v) = opt_f32(n, &["kd"])? {
+    if let Some(v) = opt_f32(n, material::KD)? {
         m.kd = v;
     }
-    if let Some(v) = opt_f32(n, &["ks"])? {
+    if let Some(v) = opt_f32(n, material::KS)? {
         m.ks = v;
     }
     if let Some(v) = opt_f32(n, material::EXPONENT)? {
@@ -296,7 +299,10 @@ fn phong_keys(n: &Node, m: &mut Material) -> Result<(), SceneError> {
     }
     if let Some(c) = n.get_any(material::DIFFUSE) {
         m.diffuse = c.color()?;
-    } else if let Some(c) = n.get("diffuse").filter(|c| c.str().is_err()) {
+    } else if let Some(c) = n
+        .get_any(material::DIFFUSE_OR_TEXTURE)
+        .filter(|c| c.str().is_err())
+    {
         m.diffuse = c.color()?;
     }
     if let Some(c) = n.get_any(material::SPECULAR) {

@@ -1,7 +1,7 @@
 //! Meshes: from a mesh file, a procedural sphere, or vertices and faces written in the scene.
 
 use super::required;
-use super::spellings::{type_of, SHAPE_TYPES};
+use super::spellings::{shape, type_of, SHAPE_TYPES};
 use super::Loader;
 use crate::geometry::MeshUv;
 use crate::math::{Vec2, Vec3};
@@ -9,22 +9,11 @@ use crate::scene::json::Node;
 use crate::scene::mesh_file::{read_mesh_with, MeshData, MeshLimits};
 use crate::scene::{poly_sphere, transform, SceneError};
 
-/// The keys that name a mesh file.
-pub(super) const MESH_FILE_KEYS: &[&str] = &[
-    "mPath",
-    "plyPath",
-    "modelpath",
-    "model",
-    "path",
-    "file",
-    "filename",
-];
-
 impl Loader<'_> {
     /// A mesh shape: poly spheres, a mesh file, or a mesh written in the scene, placed by its
     /// scale, rotation and translation keys.
     pub(super) fn mesh(&mut self, s: &Node, material: u32) -> Result<(), SceneError> {
-        if !s.contains_any(MESH_FILE_KEYS) && poly_sphere::applies(s) {
+        if !s.contains_any(shape::MESH_FILE) && poly_sphere::applies(s) {
             let budget = self.options.max_triangles.saturating_sub(self.triangles);
             for m in poly_sphere::read(s, budget)? {
                 let uv = m.uvs.map_or(MeshUv::Strip, MeshUv::PerVertex);
@@ -32,7 +21,7 @@ impl Loader<'_> {
             }
             return Ok(());
         }
-        let mut data = if let Some(fnode) = s.get_any(MESH_FILE_KEYS) {
+        let mut data = if let Some(fnode) = s.get_any(shape::MESH_FILE) {
             let rel = fnode.str()?;
             let path = self.find_asset(&fnode, rel)?;
             let limits = MeshLimits {
@@ -44,13 +33,14 @@ impl Loader<'_> {
             let mut data =
                 read_mesh_with(&path, &limits).map_err(|e| fnode.error(e.to_string()))?;
             // Counts the scene repeats from the file's header (`vs`, `fs`) must agree with it.
-            for (key, what, count) in [
-                ("vs", "vertices", data.positions.len()),
-                ("fs", "faces", data.faces.len()),
+            for (keys, what, count) in [
+                (shape::VERTEX_COUNT, "vertices", data.positions.len()),
+                (shape::FACE_COUNT, "faces", data.faces.len()),
             ] {
-                if let Some(n) = s.get(key) {
+                if let Some(n) = s.get_any(keys) {
                     let said = n.u32()?;
-                    if said as usize != count && (key == "vs" || said as usize > count) {
+                    let vertices = std::ptr::eq(keys, shape::VERTEX_COUNT);
+                    if said as usize != count && (vertices || said as usize > count) {
                         self.warn(
                             &n,
                             format!(
@@ -84,17 +74,17 @@ impl Loader<'_> {
     /// triangles) and optional per-vertex uvs (`texturemap`).
     pub(super) fn inline_mesh(&mut self, s: &Node) -> Result<MeshData, SceneError> {
         let counted = s
-            .get("vertex")
+            .get_any(shape::COUNTED_VERTICES)
             .filter(|n| n.numbers().is_err() && n.u32().is_ok());
         let (positions, vn) = if let Some(count) = counted {
             (counted_vertices(s, &count)?, count)
         } else if let Some(list) = s
-            .get("triangles")
+            .get_any(shape::TRIANGLE_OBJECTS)
             .filter(|t| t.elements().is_ok_and(|e| e.iter().all(|x| x.is_object())))
         {
             return self.triangle_objects(s, &list);
         } else {
-            let vn = required(s, &["vertices", "vs", "vertex", "points"])?;
+            let vn = required(s, shape::VERTICES)?;
             let mut positions = Vec::new();
             for v in vn.elements()? {
                 positions.push(v.vec3()?);
@@ -117,14 +107,14 @@ impl Loader<'_> {
     fn triangle_objects(&mut self, s: &Node, list: &Node) -> Result<MeshData, SceneError> {
         let mut positions = Vec::new();
         let mut faces = Vec::new();
-        let mesh_material = s.peek("material").and_then(|m| m.str().ok());
+        let mesh_material = s.get_any(shape::MATERIAL).and_then(|m| m.str().ok());
         for t in list.elements()? {
-            if let Some(k) = t.get("type") {
+            if let Some(k) = t.get_any(shape::TYPE) {
                 if type_of(SHAPE_TYPES, k.str()?) != Some("triangle") {
                     return Err(k.error("a mesh's triangles are triangles"));
                 }
             }
-            if let Some(m) = t.get("material") {
+            if let Some(m) = t.get_any(shape::MATERIAL) {
                 if m.str().ok() != mesh_material {
                     self.warn(
                         &m,
@@ -133,7 +123,7 @@ impl Loader<'_> {
                 }
             }
             let n = positions.len() as u32;
-            for k in ["v0", "v1", "v2"] {
+            for k in &shape::CORNER_NAMES[0][..3] {
                 positions.push(required(&t, &[k])?.vec3()?);
             }
             faces.push([n, n + 1, n + 2]);
@@ -157,7 +147,8 @@ type Polygon<'a, 't> = (Node<'a, 't>, Vec<u32>);
 fn counted_vertices(s: &Node, count: &Node) -> Result<Vec<Vec3>, SceneError> {
     let mut positions = Vec::new();
     for i in 0..count.u32()? {
-        positions.push(required(s, &[&format!("v{i}")])?.vec3()?);
+        let key = format!("{}{i}", shape::VERTEX_PREFIX);
+        positions.push(required(s, &[&key])?.vec3()?);
     }
     Ok(positions)
 }
@@ -180,18 +171,17 @@ fn polygons<'a, 't>(
             .collect()
     };
     let mut polygons: Vec<Polygon> = Vec::new();
-    if let (Some(sizes), Some(flat)) = (
-        s.get_any(&["faceindex", "numVerticesOnEachFace"]),
-        s.get_any(&["vertexindex", "verticesOnEachFace"]),
-    ) {
+    if let (Some(sizes), Some(flat)) =
+        (s.get_any(shape::FACE_SIZES), s.get_any(shape::FLAT_INDICES))
+    {
         polygons = sized_faces(s, &sizes, &flat, vertices)?;
-    } else if let Some(count) = s.get("face").filter(|n| n.u32().is_ok()) {
+    } else if let Some(count) = s.get_any(shape::COUNTED_FACES).filter(|n| n.u32().is_ok()) {
         for i in 0..count.u32()? {
-            let f = required(s, &[&format!("f{i}")])?;
+            let f = required(s, &[&format!("{}{i}", shape::FACE_PREFIX)])?;
             let ids = indices(&f)?;
             polygons.push((f, ids));
         }
-    } else if let Some(fnode) = s.get_any(&["faces", "fs", "tris", "triangles", "face"]) {
+    } else if let Some(fnode) = s.get_any(shape::FACES) {
         for f in fnode.elements()? {
             let ids = indices(&f)?;
             polygons.push((f, ids));
@@ -206,7 +196,7 @@ fn polygons<'a, 't>(
             polygons.push((vn.clone(), (0..n).collect()));
         }
     } else {
-        return Err(required(s, &["faces", "fs", "tris", "triangles"])
+        return Err(required(s, shape::FACES)
             .err()
             .unwrap_or_else(|| s.error("missing faces")));
     }
@@ -245,7 +235,7 @@ fn sized_faces<'a, 't>(
         polygons.push((sizes.clone(), ids));
         at += n;
     }
-    if let Some(count) = s.get("faces").filter(|n| n.u32().is_ok()) {
+    if let Some(count) = s.get_any(shape::FACE_TOTAL).filter(|n| n.u32().is_ok()) {
         if count.u32()? as usize != polygons.len() {
             return Err(count.error(format!(
                 "the mesh says it has {} faces but lists the sizes of {}",
@@ -287,7 +277,7 @@ fn fan(polygons: Vec<Polygon>) -> Result<Vec<[u32; 3]>, SceneError> {
 /// A mesh's per-vertex texture coordinates (`texturemap`: one `[u, v]` per vertex), if it gives
 /// them.
 fn texture_map(s: &Node, vertices: usize) -> Result<Option<Vec<Vec2>>, SceneError> {
-    let Some(t) = s.get("texturemap") else {
+    let Some(t) = s.get_any(shape::TEXTURE_MAP) else {
         return Ok(None);
     };
     let mut uv = Vec::new();

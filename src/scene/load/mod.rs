@@ -218,12 +218,12 @@ pub(super) fn required<'a, 't>(
     })
 }
 
-/// The required number `key`, which must be > 0.
-pub(super) fn required_positive(node: &Node, key: &str) -> Result<f32, SceneError> {
-    let n = required(node, &[key])?;
+/// The required number under `keys` (spellings of one key), which must be > 0.
+pub(super) fn required_positive(node: &Node, keys: &[&str]) -> Result<f32, SceneError> {
+    let n = required(node, keys)?;
     let v = n.f32()?;
     if v <= 0.0 {
-        return Err(n.error(format!("the {key} must be > 0, found {v}")));
+        return Err(n.error(format!("the {} must be > 0, found {v}", keys[0])));
     }
     Ok(v)
 }
@@ -273,7 +273,7 @@ impl Loader<'_> {
     /// the lights and shapes, then the warnings for keys nothing read.
     fn scene(mut self, root: &Node) -> Result<Scene, SceneError> {
         let mode = self.render_mode(root)?;
-        let camera_node = required(root, &["camera"])?;
+        let camera_node = required(root, spellings::scene::CAMERA)?;
         let variant = variant(root, &camera_node);
         self.variant = variant;
         self.mode = mode;
@@ -335,20 +335,21 @@ impl Loader<'_> {
 
     /// The file's `rendermode` (Phong when it gives none, or one not supported, with a warning).
     fn render_mode(&mut self, root: &Node) -> Result<RenderMode, SceneError> {
-        Ok(match root.get("rendermode") {
-            None => RenderMode::Phong,
-            Some(n) => match n.str()?.to_ascii_lowercase().as_str() {
-                "binary" => RenderMode::Binary,
-                "phong" => RenderMode::Phong,
-                "pathtrace" | "pathtracer" | "pathtracing" | "path" | "pt" => RenderMode::Path,
-                other => {
-                    self.warn(
-                        &n,
-                        format!("rendermode '{other}' is not supported; rendering with phong"),
-                    );
-                    RenderMode::Phong
-                }
-            },
+        let Some(n) = root.get_any(spellings::scene::RENDER_MODE) else {
+            return Ok(RenderMode::Phong);
+        };
+        let name = n.str()?;
+        Ok(match spellings::type_of(spellings::RENDER_MODES, name) {
+            Some("binary") => RenderMode::Binary,
+            Some("path") => RenderMode::Path,
+            Some(_) => RenderMode::Phong,
+            None => {
+                self.warn(
+                    &n,
+                    format!("rendermode '{name}' is not supported; rendering with phong"),
+                );
+                RenderMode::Phong
+            }
         })
     }
 
@@ -436,13 +437,17 @@ impl Loader<'_> {
             }
             Ok(v)
         };
-        let settings = root.get("settings").filter(|n| n.is_object());
+        let settings = root
+            .get_any(spellings::scene::SETTINGS)
+            .filter(|n| n.is_object());
         let pixel = match root
             .get_any(spellings::scene::PIXEL_SAMPLES)
             .or(lens_samples)
-            .or_else(|| settings.and_then(|st| st.get("samples")))
-            .or_else(|| root.get("sampling").filter(|n| n.f64().is_ok()))
-        {
+            .or_else(|| settings.and_then(|st| st.get_any(spellings::scene::SETTINGS_SAMPLES)))
+            .or_else(|| {
+                root.get_any(spellings::scene::SAMPLER)
+                    .filter(|n| n.f64().is_ok())
+            }) {
             Some(n) => Some(count(
                 &n,
                 "samples per pixel",
@@ -460,7 +465,7 @@ impl Loader<'_> {
             )?),
             None => None,
         };
-        if let Some(n) = root.get("path_sample_num") {
+        if let Some(n) = root.get_any(spellings::scene::PATH_SAMPLES) {
             n.u32()?;
             self.warn(
                 &n,
@@ -477,31 +482,21 @@ impl Loader<'_> {
     /// not what to), post-processes not done here (a denoiser, a blur) are warned about, and the
     /// tone map the file names or turns on is returned.
     fn renderer_switches(&mut self, root: &Node) -> Result<Option<ToneMap>, SceneError> {
-        for key in [
-            "use_stratified_sampling",
-            "use_importance_sampling",
-            "usegi",
-            "useGI",
-            "usecaustics",
-            "lens_sampling",
-        ] {
+        for &key in spellings::scene::CONVERGENCE_SWITCHES {
             if let Some(n) = root.get(key) {
                 n.bool()?;
             }
         }
-        for key in [
-            "importance_sampling_min_samples",
-            "importance_sampling_max_samples",
-        ] {
+        for &key in spellings::scene::CONVERGENCE_COUNTS {
             if let Some(n) = root.get(key) {
                 n.f64()?;
             }
         }
-        for (key, what) in [
-            ("use_denoiser", "a denoiser"),
-            ("use_gaussian_blur", "a Gaussian blur"),
+        for (keys, what) in [
+            (spellings::scene::DENOISER, "a denoiser"),
+            (spellings::scene::BLUR, "a Gaussian blur"),
         ] {
-            if let Some(n) = root.get(key) {
+            if let Some(n) = root.get_any(keys) {
                 if n.bool()? {
                     self.warn(
                         &n,
@@ -512,7 +507,7 @@ impl Loader<'_> {
         }
         // A tone map named in the camera or at the top level (`"tone_mapping": "aces"`).
         let named = root
-            .get("camera")
+            .get_any(spellings::scene::CAMERA)
             .and_then(|c| c.get_any(spellings::scene::TONE_MAP))
             .or_else(|| root.get_any(spellings::scene::TONE_MAP));
         if let Some(n) = named {
@@ -522,7 +517,7 @@ impl Loader<'_> {
             }
         }
         // Kierandon's renderer applies Reinhard's `x/(1+x)` per channel.
-        match root.get("use_tone_mapping") {
+        match root.get_any(spellings::scene::REINHARD) {
             Some(n) if n.bool()? => Ok(Some(ToneMap::Reinhard)),
             _ => Ok(None),
         }
@@ -536,25 +531,28 @@ impl Loader<'_> {
         if n.f64().is_ok() {
             return Ok(None); // a count (a top-level `sampling`: samples per pixel)
         }
-        Ok(Some(match n.str()?.to_ascii_lowercase().as_str() {
-            "random" | "uniform" => Method::Random,
-            "jittered" | "stratified" | "jitter" | "jittering" | "grid" => Method::Jittered,
-            "sobol" => Method::Sobol,
-            other => {
-                self.warn(
-                    &n,
-                    format!("unknown sampling method '{other}'; using jittered"),
-                );
-                Method::Jittered
-            }
-        }))
+        let name = n.str()?;
+        Ok(Some(
+            match spellings::type_of(spellings::SAMPLING_METHODS, name) {
+                Some("random") => Method::Random,
+                Some("sobol") => Method::Sobol,
+                Some(_) => Method::Jittered,
+                None => {
+                    self.warn(
+                        &n,
+                        format!("unknown sampling method '{name}'; using jittered"),
+                    );
+                    Method::Jittered
+                }
+            },
+        ))
     }
 }
 
 /// The object that holds the scene's lists: `scene`, or the top level when the lists are there.
 fn scene_object<'a, 't>(root: &Node<'a, 't>) -> Result<Node<'a, 't>, SceneError> {
     let scene_node =
-        match root.get("scene") {
+        match root.get_any(spellings::scene::SCENE) {
             Some(n) => n,
             // Some files put the scene's lists at the top level.
             None if root.has_any(spellings::scene::SHAPE_LISTS)
@@ -571,7 +569,7 @@ fn scene_object<'a, 't>(root: &Node<'a, 't>) -> Result<Node<'a, 't>, SceneError>
     }
     // One renderer's count of rays per rough reflection: here each camera sample traces one.
     if !std::ptr::eq(scene_node.value, root.value) {
-        if let Some(n) = scene_node.get("nsamples") {
+        if let Some(n) = scene_node.get_any(spellings::scene::ROUGH_SAMPLES) {
             n.u32()?;
         }
     }
@@ -604,7 +602,7 @@ fn conventions(
 fn variant(root: &Node, camera: &Node) -> Variant {
     if is_cgr(root, camera) {
         Variant::Cgr
-    } else if camera.has_any(&["position", "lookat", "up"]) {
+    } else if camera.has_any(spellings::camera::V2021_KEYS) {
         Variant::V2021
     } else {
         Variant::V2019
@@ -614,7 +612,8 @@ fn variant(root: &Node, camera: &Node) -> Variant {
 /// Whether a file follows the CGR 2024+ variant: a top-level `rendermode`, or the CGR camera keys
 /// `upVector`/`exposure` (some CGR files omit `rendermode`).
 pub(super) fn is_cgr(root: &Node, camera: &Node) -> bool {
-    root.get("rendermode").is_some() || camera.has_any(&["upVector", "exposure"])
+    root.get_any(spellings::scene::RENDER_MODE).is_some()
+        || camera.has_any(spellings::camera::CGR_KEYS)
 }
 
 #[cfg(test)]

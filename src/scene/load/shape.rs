@@ -22,7 +22,7 @@ impl Loader<'_> {
         if !s.is_object() {
             return Err(s.error(format!("a shape is an object, found {}", s.kind())));
         }
-        let type_node = required(s, &["type"])?;
+        let type_node = required(s, shape::TYPE)?;
         let name = type_node.str()?;
         let Some(kind) = type_of(SHAPE_TYPES, name) else {
             let near = nearest(name, &type_names(SHAPE_TYPES));
@@ -58,7 +58,7 @@ impl Loader<'_> {
     /// A sphere: a centre and a radius.
     fn sphere_shape(&mut self, s: &Node, material: u32) -> Result<(), SceneError> {
         let center = required(s, shape::CENTRE)?.vec3()?;
-        let radius = required_positive(s, "radius")?;
+        let radius = required_positive(s, shape::RADIUS)?;
         self.primitives.push(Primitive {
             shape: Shape::Sphere(Sphere::new(center, radius, SPHERE_POLE, SPHERE_SEAM)),
             material,
@@ -69,13 +69,13 @@ impl Loader<'_> {
     /// A closed cylinder: a centre, an axis, a radius and its half-height (`height`).
     fn cylinder_shape(&mut self, s: &Node, material: u32) -> Result<(), SceneError> {
         let center = required(s, shape::CENTRE)?.vec3()?;
-        let an = required(s, &["axis"])?;
+        let an = required(s, shape::AXIS)?;
         let axis = an.vec3()?;
         if axis.length_squared() == 0.0 {
             return Err(an.error("the axis must not be zero"));
         }
-        let radius = required_positive(s, "radius")?;
-        let half = required_positive(s, "height")?;
+        let radius = required_positive(s, shape::RADIUS)?;
+        let half = required_positive(s, shape::HEIGHT)?;
         self.primitives.push(Primitive {
             shape: Shape::Cylinder(Cylinder::new(center, axis, radius, half)),
             material,
@@ -103,9 +103,8 @@ impl Loader<'_> {
     /// but no corners, otherwise a parallelogram from its corners, two opposite corners of an
     /// axis-aligned rectangle, or a centre and a size.
     fn quad_shape(&mut self, s: &Node, material: u32) -> Result<(), SceneError> {
-        let has_corners =
-            s.contains_any(&["v0", "v1", "point1", "p0", "points", "vertices", "corner1"]);
-        if s.contains_any(&["normal", "distance"]) && !has_corners {
+        let has_corners = s.contains_any(shape::ANY_CORNERS);
+        if (s.contains_any(shape::NORMAL) || s.contains_any(shape::DISTANCE)) && !has_corners {
             let plane = infinite_plane(s)?;
             self.primitives.push(Primitive {
                 shape: Shape::Plane(plane),
@@ -113,9 +112,10 @@ impl Loader<'_> {
             });
             return Ok(());
         }
-        let p = if let (Some(a), Some(b)) = (s.get("corner1"), s.get("corner2")) {
+        let [corner1, corner2] = shape::OPPOSITE_CORNERS;
+        let p = if let (Some(a), Some(b)) = (s.get_any(corner1), s.get_any(corner2)) {
             axis_rectangle(s, a.vec3()?, b.vec3()?)?
-        } else if !has_corners && s.contains_any(&["center", "centre"]) {
+        } else if !has_corners && s.contains_any(shape::BOX_CENTRE) {
             centred_rectangle(s)?
         } else {
             self.corners(s, 4)?
@@ -150,26 +150,26 @@ impl Loader<'_> {
     /// An axis-aligned box, from its `min` and `max` corners or its centre and edge lengths,
     /// optionally rotated.
     fn box_shape(&mut self, s: &Node, material: u32) -> Result<(), SceneError> {
-        let (min, max) = if let Some(c) = s.get_any(&["center", "centre"]) {
+        let (min, max) = if let Some(c) = s.get_any(shape::BOX_CENTRE) {
             // Centre and edge lengths along x (`width`), y (`height`), z (`depth`).
             let c = c.vec3()?;
             let size = Vec3::new(
-                required(s, &["width"])?.f32()?,
-                required(s, &["height"])?.f32()?,
-                required(s, &["depth"])?.f32()?,
+                required(s, shape::WIDTH)?.f32()?,
+                required(s, shape::HEIGHT)?.f32()?,
+                required(s, shape::DEPTH)?.f32()?,
             );
             (c - 0.5 * size, c + 0.5 * size)
         } else {
             (
-                required(s, &["min"])?.vec3()?,
-                required(s, &["max"])?.vec3()?,
+                required(s, shape::MIN)?.vec3()?,
+                required(s, shape::MAX)?.vec3()?,
             )
         };
         let (mut p, faces) = box_mesh(min.min(max), min.max(max));
         // A box given by its centre turns about its centre; one given by its corners
         // turns about the world origin (docs/scene-format.md gives the evidence).
         if let Some(r) = transform::rotation(s)? {
-            let pivot = if s.has_any(&["center", "centre"]) {
+            let pivot = if s.has_any(shape::BOX_CENTRE) {
                 0.5 * (min + max)
             } else {
                 Vec3::ZERO
@@ -185,12 +185,7 @@ impl Loader<'_> {
 
     /// The corner points of a triangle (`n = 3`) or quad (`n = 4`), under any of the spellings.
     pub(super) fn corners(&self, s: &Node, n: usize) -> Result<Vec<Vec3>, SceneError> {
-        for keys in [
-            ["v0", "v1", "v2", "v3"],
-            ["v1", "v2", "v3", "v4"],
-            ["point1", "point2", "point3", "point4"],
-            ["p0", "p1", "p2", "p3"],
-        ] {
+        for keys in shape::CORNER_NAMES {
             if s.get(keys[0]).is_some() {
                 return keys[..n]
                     .iter()
@@ -198,7 +193,7 @@ impl Loader<'_> {
                     .collect();
             }
         }
-        if let Some(list) = s.get_any(&["points", "vertices"]) {
+        if let Some(list) = s.get_any(shape::POINTS) {
             let e = list.elements()?;
             if n == 4 && e.len() == 3 {
                 // Three corners of a parallelogram: complete it at the corner opposite the one
@@ -219,7 +214,7 @@ impl Loader<'_> {
 
     /// The uvs of a triangle's or quad's `n` corners (`uv0`.. or `uv1`..), if it gives them all.
     pub(super) fn corner_uvs(&self, s: &Node, n: usize) -> Result<Option<Vec<Vec2>>, SceneError> {
-        for keys in [["uv0", "uv1", "uv2", "uv3"], ["uv1", "uv2", "uv3", "uv4"]] {
+        for keys in shape::CORNER_UVS {
             if s.get(keys[0]).is_some() && s.get(keys[n - 1]).is_some() {
                 let mut out = Vec::with_capacity(n);
                 for k in &keys[..n] {
@@ -326,7 +321,7 @@ pub(super) fn axis_rectangle(s: &Node, a: Vec3, b: Vec3) -> Result<Vec<Vec3>, Sc
 /// -1}` is the floor `y = −1`. The corpus files put the plane where the rest of the scene rests
 /// only under this sign (docs/scene-format.md).
 pub(super) fn infinite_plane(s: &Node) -> Result<Plane, SceneError> {
-    let nn = required(s, &["normal"])?;
+    let nn = required(s, shape::NORMAL)?;
     let normal = nn.vec3()?;
     if normal == Vec3::ZERO {
         return Err(nn.error("the plane's normal must not be zero"));
@@ -338,7 +333,7 @@ pub(super) fn infinite_plane(s: &Node) -> Result<Plane, SceneError> {
             normal.x, normal.y, normal.z
         )));
     }
-    let distance = required(s, &["distance"])?.f32()?;
+    let distance = required(s, shape::DISTANCE)?.f32()?;
     Ok(Plane::new(normal, distance))
 }
 
@@ -347,9 +342,9 @@ pub(super) fn infinite_plane(s: &Node) -> Result<Plane, SceneError> {
 /// Euler degrees, see [`transform`]) about its centre. Corners in cycle order, starting at
 /// (−width/2, −height/2).
 pub(super) fn centred_rectangle(s: &Node) -> Result<Vec<Vec3>, SceneError> {
-    let c = required(s, &["center", "centre"])?.vec3()?;
-    let w = required_positive(s, "width")?;
-    let h = required_positive(s, "height")?;
+    let c = required(s, shape::BOX_CENTRE)?.vec3()?;
+    let w = required_positive(s, shape::WIDTH)?;
+    let h = required_positive(s, shape::HEIGHT)?;
     let r = transform::rotation(s)?.unwrap_or(glam::Mat3::IDENTITY);
     let local = [
         Vec3::new(-0.5 * w, 0.0, -0.5 * h),

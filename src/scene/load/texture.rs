@@ -3,7 +3,7 @@
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
-use super::spellings::{texture, type_names, type_of, TEXTURE_TYPES};
+use super::spellings::{scene, texture, type_names, type_of, CHECKER_SPACES, TEXTURE_TYPES};
 use super::{nearest, opt_f32, required, Loader};
 use crate::files::shown;
 use crate::image_io::ReadLimits;
@@ -58,14 +58,14 @@ impl<'a, 't> Libraries<'a, 't> {
     pub(super) fn read(holders: &[&Node<'a, 't>]) -> Result<Self, SceneError> {
         let mut libs = Libraries::default();
         for holder in holders {
-            for (key, lib) in [
-                ("materials", &mut libs.materials),
-                ("textures", &mut libs.textures),
+            for (keys, lib) in [
+                (scene::MATERIAL_LIBRARY, &mut libs.materials),
+                (scene::TEXTURE_LIBRARY, &mut libs.textures),
             ] {
-                if let Some(list) = holder.get(key) {
+                if let Some(list) = holder.get_any(keys) {
                     for m in list.elements()? {
                         // Not a read of the entry: one that nothing uses stays unread.
-                        if let Some(name) = m.peek("name") {
+                        if let Some(name) = m.peek(scene::ENTRY_NAME) {
                             lib.push((name.str()?.to_string(), m.clone()));
                         }
                     }
@@ -87,7 +87,7 @@ impl Loader<'_> {
         if matches!(t.value, jsonc_parser::ast::Value::Array(_)) {
             return Ok(None); // texture coordinates (`texturemap` on meshes), read with the mesh
         }
-        if t.is_object() && t.contains_any(&["type"]) {
+        if t.is_object() && t.contains_any(texture::TYPE) {
             return self.library_texture(t).map(Some);
         }
         let (node, rel) = if t.is_object() {
@@ -165,11 +165,11 @@ impl Loader<'_> {
     /// A texture given by its `type`: an entry of the texture library or a texture object (see
     /// [`crate::texture`] and docs/scene-format.md, "Texture", for the forms).
     pub(super) fn library_texture(&mut self, def: &Node) -> Result<u32, SceneError> {
-        let type_node = required(def, &["type"])?;
+        let type_node = required(def, texture::TYPE)?;
         let name = type_node.str()?;
         match type_of(TEXTURE_TYPES, name) {
             Some("constant") => {
-                let c = required(def, &["colour", "color"])?.color()?;
+                let c = required(def, texture::COLOUR)?.color()?;
                 self.textures.push(Texture::constant(c));
                 Ok(self.textures.len() as u32 - 1)
             }
@@ -179,8 +179,8 @@ impl Loader<'_> {
                 // The file's own program reads image row (1 − v − offset_v)·height: its v grows
                 // up the image, so its offset moves the lookup up (−v here).
                 let offset = Vec2::new(
-                    opt_f32(def, &["offset_u"])?.unwrap_or(0.0),
-                    -opt_f32(def, &["offset_v"])?.unwrap_or(0.0),
+                    opt_f32(def, texture::OFFSET[0])?.unwrap_or(0.0),
+                    -opt_f32(def, texture::OFFSET[1])?.unwrap_or(0.0),
                 );
                 self.image_texture(&img, rel, offset)
             }
@@ -271,12 +271,12 @@ fn checker(def: &Node) -> Result<Checker, SceneError> {
         None => 1.0,
     };
     let solid = match def.get_any(texture::CHECKER_SPACE) {
-        Some(n) => match n.str()?.to_ascii_lowercase().as_str() {
-            "uv" => false,
-            "3d" | "world" | "solid" | "xyz" => true,
-            other => {
+        Some(n) => match type_of(CHECKER_SPACES, n.str()?) {
+            Some(space) => space == "3d",
+            None => {
                 return Err(n.error(format!(
-                    "a checkerboard's space is 'uv' or '3d', found '{other}'"
+                    "a checkerboard's space is 'uv' or '3d', found '{}'",
+                    n.str()?
                 )))
             }
         },
