@@ -6,12 +6,15 @@
 
 For each scene, runs alternate between the two renderers. POV-Ray is timed by its own printed
 "Trace Time" (parse, bounding and start-up excluded); raytracer by its whole process (scene load,
-BVH build, render and PNG encode included). Prints medians and the ratio raytracer / POV-Ray as a
-Markdown table; `--adc` also runs both with POV-Ray's default adc_bailout (1/255) in place of the
-full ray tree. Not run by CI: a benchmark, never a test.
+BVH build, render and PNG encode included), and by the render time it prints (load, build and
+encode excluded: the part that compares with POV-Ray's Trace Time). Prints medians and the ratios
+raytracer / POV-Ray as a Markdown table, then their spread over the scenes; `--adc` also runs both
+with POV-Ray's default adc_bailout (1/255) in place of the full ray tree. Not run by CI: a
+benchmark, never a test.
 """
 
 import argparse
+import math
 import os
 import re
 import statistics
@@ -27,6 +30,7 @@ import whitted_scenes  # noqa: E402
 
 TRACE_TIME = re.compile(r"Trace Time:.*\(([0-9.]+) seconds\)")
 RAYS = re.compile(r" ([0-9]+) rays")
+RENDER = re.compile(r", ([0-9.]+) s \(build")
 
 
 def pov_time(pov, out, size, threads, bailout):
@@ -47,8 +51,8 @@ def our_time(binary, scene, out, threads, extra):
     dt = time.perf_counter() - t0
     if r.returncode != 0:
         sys.exit("raytracer failed on %s:\n%s" % (scene, r.stderr[-2000:]))
-    m = RAYS.search(r.stderr)
-    return dt, int(m.group(1)) if m else 0
+    m, t = RAYS.search(r.stderr), RENDER.search(r.stderr)
+    return dt, int(m.group(1)) if m else 0, float(t.group(1)) if t else float("nan")
 
 
 def main():
@@ -83,31 +87,41 @@ def main():
             text = f.read().replace("../../../textures/", os.path.join(ROOT, "textures") + "/")
         with open(scene, "w") as f:
             f.write(text)
-        ours, theirs, base, rays = [], [], [], 0
+        ours, traced, theirs, base, rays = [], [], [], [], 0
         for _ in range(args.runs):
-            dt, rays = our_time(args.raytracer, scene, os.path.join(tmp, name + ".png"), args.threads, extra)
+            dt, rays, trace = our_time(args.raytracer, scene, os.path.join(tmp, name + ".png"),
+                                       args.threads, extra)
             ours.append(dt)
+            traced.append(trace)
             if args.baseline:
                 base.append(our_time(args.baseline, scene, os.path.join(tmp, name + "-base.png"),
                                      args.threads, extra)[0])
             theirs.append(pov_time(pov, os.path.join(tmp, name + "-pov.png"), s["size"], args.threads,
                                    args.adc))
         a, b = statistics.median(ours), statistics.median(theirs)
+        t = statistics.median(traced)
         c = statistics.median(base) if base else None
-        rows.append((name, rays, a, b, c))
-        print("%s: raytracer %.3f s, POV-Ray %.3f s, ratio %.2f" % (name, a, b, a / b), file=sys.stderr)
-    head = "| scene | rays (ours) | raytracer s | POV-Ray trace s | ratio |"
-    rule = "|---|---:|---:|---:|---:|"
+        rows.append((name, rays, a, t, b, c))
+        print("%s: raytracer %.3f s (render %.3f s), POV-Ray %.3f s, ratio %.2f (%.2f)"
+              % (name, a, t, b, a / b, t / b), file=sys.stderr)
+    head = "| scene | rays (ours) | raytracer s | render s | POV-Ray trace s | ratio | render ratio |"
+    rule = "|---|---:|---:|---:|---:|---:|---:|"
     if args.baseline:
         head += " baseline s | baseline ratio |"
         rule += "---:|---:|"
     print(head)
     print(rule)
-    for name, rays, a, b, c in rows:
-        line = "| %s | %d | %.3f | %.3f | %.2f× |" % (name, rays, a, b, a / b)
+    for name, rays, a, t, b, c in rows:
+        line = "| %s | %d | %.3f | %.3f | %.3f | %.2f× | %.2f× |" % (name, rays, a, t, b, a / b, t / b)
         if c is not None:
             line += " %.3f | %.2f× |" % (c, c / b)
         print(line)
+    for label, k in (("ratio", 2), ("render ratio", 3)):
+        r = sorted(row[k] / row[4] for row in rows)
+        gm = math.exp(sum(math.log(x) for x in r) / len(r))
+        print("\n%s over %d scenes: median %.2f×, geometric mean %.2f×, range %.2f–%.2f×"
+              % (label, len(r), statistics.median(r), gm, r[0], r[-1]), end="")
+    print()
 
 
 if __name__ == "__main__":

@@ -33,9 +33,13 @@ def material_mix(i):
         return GLASS
     if i % 5 == 1:
         return MIRROR
-    hue = (i * 0.61803) % 1.0
-    c = tuple(0.25 + 0.6 * (0.5 + 0.5 * math.cos(2 * math.pi * (hue + k / 3))) for k in range(3))
-    return {"kd": 0.8, "ks": 0.3, "exp": 40, "color": c}
+    return {"kd": 0.8, "ks": 0.3, "exp": 40, "color": hue(i)}
+
+
+def hue(i):
+    """The i-th of a sequence of well-spread colours."""
+    h = (i * 0.61803) % 1.0
+    return tuple(0.25 + 0.6 * (0.5 + 0.5 * math.cos(2 * math.pi * (h + k / 3))) for k in range(3))
 
 
 def ground(half):
@@ -119,12 +123,104 @@ def big_area_light():
     }
 
 
+def facing_mirrors():
+    """Two mirror walls facing each other with a diffuse and a glass sphere between them: rays
+    bounce to the last level (12) wherever the walls are seen."""
+    def wall(x):
+        return {"quad": [(x, 0, 6), (x, 0, -6), (x, 6, -6), (x, 6, 6)], "material": MIRROR}
+    return {
+        "size": 256, "nbounces": 12,
+        "camera": {"position": (1.6, 1.5, 3.5), "lookat": (-2.2, 1.0, 0.5), "fov": 55},
+        "background": (0.3, 0.35, 0.45),
+        "lights": [{"point": (0, 3.6, 2.5), "intensity": 0.9}],
+        "shapes": [ground(5), wall(-2.2), wall(2.2),
+                   {"sphere": (-0.6, 0.8, -0.5), "radius": 0.8, "material": RED},
+                   {"sphere": (1.0, 0.5, 1.2), "radius": 0.5, "material": GLASS}],
+    }
+
+
+def many_lights():
+    """Twenty-four point lights in a ring and four small area lights (2×2) over a 5×5 grid of
+    diffuse spheres: direct light is almost all the work."""
+    lights = [{"point": (5 * math.cos(2 * math.pi * k / 24), 3 + (k % 3), 5 * math.sin(2 * math.pi * k / 24)),
+               "intensity": 0.06} for k in range(24)]
+    lights += [{"area": (x, 4.5, z), "size": 0.4, "samples": 2, "intensity": 0.12}
+               for x in (-2, 2) for z in (-2, 2)]
+    shapes = [ground(6)]
+    for i in range(5):
+        for j in range(5):
+            m = {"kd": 0.8, "ks": 0.3, "exp": 40, "color": hue(5 * i + j)}
+            shapes.append({"sphere": (-2.4 + 1.2 * i, 0.4, -2.4 + 1.2 * j), "radius": 0.4, "material": m})
+    return {
+        "size": 256, "nbounces": 2,
+        "camera": {"position": (0, 5, 7), "lookat": (0, 0, 0), "fov": 45},
+        "background": (0.05, 0.05, 0.06),
+        "lights": lights,
+        "shapes": shapes,
+    }
+
+
+def terrain(n=160, half=5.0):
+    """A height field of 2·n² triangles: gentle hills of several frequencies."""
+    def height(x, z):
+        return 0.6 * math.sin(0.9 * x) * math.cos(0.7 * z) + 0.25 * math.sin(2.3 * x + 1.1 * z) \
+            + 0.1 * math.cos(5.1 * z - 0.4 * x)
+    verts = []
+    for j in range(n + 1):
+        for i in range(n + 1):
+            x, z = -half + 2 * half * i / n, -half + 2 * half * j / n
+            verts.append((round(x, 5), round(height(x, z), 5), round(z, 5)))
+    faces = []
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i
+            b, c, d = a + 1, a + n + 2, a + n + 1
+            faces += [(a, d, c), (a, c, b)]
+    return verts, faces
+
+
+def large_mesh():
+    """A 51,200-triangle height field with a mirror and a glass sphere on it, a point light and
+    a small area light (4×4)."""
+    verts, faces = terrain()
+    land = {"kd": 0.8, "ks": 0.2, "exp": 20, "color": (0.55, 0.6, 0.4)}
+    return {
+        "size": 256, "nbounces": 8,
+        "camera": {"position": (0, 4.5, 8), "lookat": (0, 0, 0), "fov": 45},
+        "background": (0.3, 0.35, 0.45),
+        "lights": [
+            {"point": (-4, 7, 5), "intensity": 0.6},
+            {"area": (3, 6, 2), "size": 1.0, "samples": 4, "intensity": 0.5},
+        ],
+        "shapes": [
+            {"mesh": (verts, faces), "material": land},
+            {"sphere": (-1.2, 1.6, 0.5), "radius": 0.8, "material": MIRROR},
+            {"sphere": (1.4, 1.4, 1.5), "radius": 0.7, "material": GLASS},
+        ],
+    }
+
+
+def thin_lens():
+    """The first scene through a thin lens focused on the mirror sphere: 16 camera rays a
+    pixel, each with its own shadow and secondary rays."""
+    s = whitted(2)
+    c = s["camera"]
+    target = (0, 1, -0.6)
+    focus = math.dist(c["position"], target)
+    s["camera"] = dict(c, aperture=0.3, focus=focus, lens_samples=16)
+    return s
+
+
 SCENES = {
     "whitted": whitted(8),
     "whitted16": whitted(16),
     "spheres": many_spheres(),
     "glass": glass_and_mirrors(),
     "arealight": big_area_light(),
+    "mirrors": facing_mirrors(),
+    "lights": many_lights(),
+    "mesh": large_mesh(),
+    "thinlens": thin_lens(),
 }
 
 
@@ -159,16 +255,25 @@ def to_json(s):
         if "sphere" in sh:
             shapes.append({"type": "sphere", "center": list(sh["sphere"]), "radius": sh["radius"],
                            "material": json_material(sh["material"])})
+        elif "mesh" in sh:
+            verts, faces = sh["mesh"]
+            shapes.append({"type": "trimesh", "vertices": [list(p) for p in verts],
+                           "faces": [list(f) for f in faces],
+                           "material": json_material(sh["material"])})
         else:
             q = sh["quad"]
             shapes.append({"type": "plane", "v0": list(q[0]), "v1": list(q[1]), "v2": list(q[2]),
                            "v3": list(q[3]), "material": json_material(sh["material"])})
     c = s["camera"]
+    camera = {"type": "pinhole", "width": s["size"], "height": s["size"],
+              "position": list(c["position"]), "lookAt": list(c["lookat"]),
+              "upVector": [0, 1, 0], "fov": c["fov"], "exposure": 1.0}
+    if "aperture" in c:
+        camera.update({"type": "thinlens", "aperture": c["aperture"],
+                       "focusdistance": c["focus"], "samplesize": c["lens_samples"]})
     return {
         "nbounces": s["nbounces"], "rendermode": "phong",
-        "camera": {"type": "pinhole", "width": s["size"], "height": s["size"],
-                   "position": list(c["position"]), "lookAt": list(c["lookat"]),
-                   "upVector": [0, 1, 0], "fov": c["fov"], "exposure": 1.0},
+        "camera": camera,
         "scene": {"backgroundcolor": list(s["background"]), "ambientlight": [0, 0, 0],
                   "lightsources": lights, "shapes": shapes},
     }
@@ -212,13 +317,22 @@ def pov_texture(m, uv=False):
 
 def to_pov(s):
     c = s["camera"]
+    lens = ""
+    if "aperture" in c:
+        # Focal blur with exactly the lens samples of the JSON camera (no adaptive stop), the
+        # plane in focus through the point the focus distance reaches along the view.
+        d = [b - a for a, b in zip(c["position"], c["lookat"])]
+        n = math.sqrt(sum(x * x for x in d))
+        focal = [a + c["focus"] * x / n for a, x in zip(c["position"], d)]
+        lens = " aperture %g blur_samples %d, %d confidence 1 variance 0 focal_point %s" % (
+            c["aperture"], c["lens_samples"], c["lens_samples"], v(focal))
     out = [
         "#version 3.7;",
         "global_settings { assumed_gamma 1.0 max_trace_level %d ambient_light 0 }"
         % (s["nbounces"] + 1),
         "background { rgb %s }" % v(s["background"]),
-        "camera { perspective location %s look_at %s sky y right x up y angle %g }"
-        % (v(c["position"]), v(c["lookat"]), c["fov"]),
+        "camera { perspective location %s look_at %s sky y right x up y angle %g%s }"
+        % (v(c["position"]), v(c["lookat"]), c["fov"], lens),
     ]
     for l in s["lights"]:
         col = "rgb %g" % l["intensity"]
@@ -232,6 +346,11 @@ def to_pov(s):
         m = sh["material"]
         if "sphere" in sh:
             out.append("sphere { %s, %g %s }" % (v(sh["sphere"]), sh["radius"], pov_texture(m)))
+        elif "mesh" in sh:
+            verts, faces = sh["mesh"]
+            out.append("mesh2 { vertex_vectors { %d, %s } face_indices { %d, %s } %s }"
+                       % (len(verts), ", ".join(v(p) for p in verts), len(faces),
+                          ", ".join("<%d, %d, %d>" % f for f in faces), pov_texture(m)))
         else:
             q = sh["quad"]
             out.append("mesh2 { vertex_vectors { 4, %s } uv_vectors { 4, <0, 1>, <1, 1>, <1, 0>, <0, 0> }"
