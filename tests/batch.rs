@@ -120,6 +120,44 @@ fn good_scenes_are_the_single_render_bytes_and_a_broken_one_is_reported() {
 }
 
 #[test]
+fn a_scene_over_a_limit_fails_alone_and_names_its_flag() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("scenes");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("small.json"), scene("0.9, 0.2, 0.1")).unwrap();
+    let big = scene("0.1, 0.3, 0.9").replace(
+        r#""width": 32, "height": 32"#,
+        r#""width": 64, "height": 64"#,
+    );
+    std::fs::write(dir.join("big.json"), big).unwrap();
+    let out = tmp.path().join("out");
+    // 32 × 32 = 1,024 pixels are within the limit, 64 × 64 = 4,096 are not.
+    let o = raytracer(&[
+        &"batch",
+        &dir,
+        &"--out",
+        &out,
+        &"--max-pixels",
+        &"2000",
+        &"-q",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let summary = read(&out.join("summary.csv"));
+    let big = summary_line(&summary, "big.json");
+    assert!(
+        big.contains(",failed,")
+            && big.contains("over the limit of 2000 pixels")
+            && big.contains("--max-pixels"),
+        "{big}"
+    );
+    assert!(
+        summary_line(&summary, "small.json").contains("small.png,ok,,32,32,"),
+        "{summary}"
+    );
+    assert!(out.join("small.png").is_file() && !out.join("big.png").exists());
+}
+
+#[test]
 fn references_pass_when_identical_and_fail_when_perturbed_with_a_report() {
     let tmp = tempfile::tempdir().unwrap();
     let scenes = tmp.path().join("scenes");

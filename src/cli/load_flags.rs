@@ -1,6 +1,6 @@
 //! The flags that say how a scene is read: the image size, where assets are found, and the
-//! limits that refuse a scene too large for this machine. Every command that loads one scene for
-//! a render takes them (`raytracer SCENE OUT`, `check`, `watch`).
+//! limits that refuse a scene too large for this machine. Every command that loads scenes for a
+//! render takes them (`raytracer SCENE OUT`, `batch`, `check`, `watch`).
 
 use std::path::PathBuf;
 
@@ -55,6 +55,11 @@ pub(crate) struct LoadFlags {
 }
 
 impl LoadFlags {
+    /// The image size the flags ask for, each side if given.
+    pub(crate) fn size(&self) -> (Option<u32>, Option<u32>) {
+        (self.width, self.height)
+    }
+
     /// The load options these flags ask for; the memory limit defaults to what the process can
     /// have.
     pub(crate) fn options(&self) -> LoadOptions {

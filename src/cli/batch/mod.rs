@@ -20,11 +20,11 @@ use run::{ImagePlan, Job, RunOptions, SceneRow, Status};
 use summary::{SummaryFormat, Totals};
 
 use raytracer::image_io::OutputFormat;
-use raytracer::scene::LoadOptions;
 
 use crate::exit_code::{self, Failure};
 use crate::image_flags::ImageFlags;
 use crate::interrupt::Interrupt;
+use crate::load_flags::LoadFlags;
 use crate::values;
 
 /// Image formats for `--format`.
@@ -85,16 +85,10 @@ struct BatchCli {
     /// Worker threads shared by all scenes (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
     threads: Option<u64>,
-    /// Override every image's width (keeps each scene's aspect ratio unless --height is also
-    /// given).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
-    width: Option<u32>,
-    /// Override every image's height.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
-    height: Option<u32>,
-    /// Extra folder to resolve texture and mesh paths against (repeatable).
-    #[arg(long = "asset-dir")]
-    asset_dirs: Vec<PathBuf>,
+    /// How every scene is read: image size, asset folders, and the limits a scene must stay
+    /// within (a scene over one fails alone).
+    #[command(flatten)]
+    load: LoadFlags,
     /// No line per scene, no warnings, no totals (errors are still printed).
     #[arg(short, long)]
     quiet: bool,
@@ -117,7 +111,7 @@ impl BatchCli {
         if self.image.exposure != 1.0 {
             parts.push(format!("exposure ×{}", self.image.exposure));
         }
-        match (self.width, self.height) {
+        match self.load.size() {
             (Some(w), Some(h)) => parts.push(format!("{w}×{h}")),
             (Some(w), None) => parts.push(format!("width {w}")),
             (None, Some(h)) => parts.push(format!("height {h}")),
@@ -322,13 +316,7 @@ fn render_jobs(
         exposure: flags.display_exposure(scene),
     };
     let options = RunOptions {
-        load: LoadOptions {
-            width: cli.width,
-            height: cli.height,
-            asset_dirs: cli.asset_dirs.clone(),
-            max_memory: raytracer::memory::available(),
-            ..LoadOptions::default()
-        },
+        load: cli.load.options(),
         plan: &plan,
         max_flip: cli.max_flip,
         keep_images,
