@@ -22,7 +22,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
-# (name, scene, extra flags): each takes about a second on one thread here.
+# (name, scene, extra flags): sized so that start-up and scene load are a small part of a run.
 SCENES = [
     ("cornell (path)", "scenes/cornell.json", ["--integrator", "path", "--spp", "16", "--width", "160"]),
     ("whitted", "benches/peers/scenes/whitted.json", ["--width", "768"]),

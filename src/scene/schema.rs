@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 
 use serde_json::{json, Map, Value as Json};
 
-use super::json::same_key;
+use super::json::{folded_key, same_key};
 use super::keys::HARMLESS;
 use super::load::spellings::{describe, tables, Key, Spelling, Table, Value};
 
@@ -75,12 +75,14 @@ fn object_schema(t: &Table, tables: &[Table]) -> Map<String, Json> {
     let mut members: BTreeMap<(String, bool), Member> = BTreeMap::new();
     for k in &t.keys {
         for name in k.names {
-            let m = members.entry((folded(name), k.numbered)).or_insert(Member {
-                name,
-                numbered: k.numbered,
-                values: Vec::new(),
-                concepts: Vec::new(),
-            });
+            let m = members
+                .entry((folded_key(name), k.numbered))
+                .or_insert(Member {
+                    name,
+                    numbered: k.numbered,
+                    values: Vec::new(),
+                    concepts: Vec::new(),
+                });
             if !m.values.contains(&k.value) {
                 m.values.push(k.value);
             }
@@ -117,7 +119,7 @@ fn object_schema(t: &Table, tables: &[Table]) -> Map<String, Json> {
             Some((parent, name)) => holds(tables, parent, t.entity).then_some(name),
             None => Some(h),
         })
-        .filter(|name| !members.contains_key(&(folded(name), false)))
+        .filter(|name| !members.contains_key(&(folded_key(name), false)))
         .map(case_letters)
         .collect();
     patterns.insert(format!("^({})$", harmless.join("|")), json!({}));
@@ -252,7 +254,7 @@ fn key_pattern(names: &[&str], numbered: bool) -> String {
 
 /// The letters of `name` without its separators, any case, with separators between them.
 fn letters(name: &str) -> String {
-    folded(name)
+    folded_key(name)
         .chars()
         .map(|c| case_letters(&c.to_string()))
         .collect::<Vec<_>>()
@@ -271,14 +273,6 @@ fn case_letters(text: &str) -> String {
                 c.to_string()
             }
         })
-        .collect()
-}
-
-/// `name` as the loader compares it: lower case, without separators.
-fn folded(name: &str) -> String {
-    name.chars()
-        .filter(|c| !matches!(c, '_' | '-' | ' '))
-        .map(|c| c.to_ascii_lowercase())
         .collect()
 }
 

@@ -26,7 +26,7 @@ use super::error::{Location, SceneError};
 use crate::math::Vec3;
 
 mod names;
-pub use names::{same_key, NameIndex};
+pub use names::{folded_key, same_key, NameIndex};
 
 /// Bytes between character-count checkpoints: a column costs at most this many byte reads on top
 /// of a binary search over the line starts, and the table takes one `usize` per this many bytes.

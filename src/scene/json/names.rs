@@ -25,6 +25,12 @@ pub fn same_key(a: &str, b: &str) -> bool {
     folded(a).eq(folded(b))
 }
 
+/// `name` as [`same_key`] compares it: two names are one key when these are equal.
+pub fn folded_key(name: &str) -> String {
+    // Dropping ASCII bytes and lowercasing ASCII letters leaves valid UTF-8.
+    String::from_utf8(folded(name).collect()).unwrap_or_default()
+}
+
 /// The bytes of `name` as [`same_key`] compares them.
 fn folded(name: &str) -> impl Iterator<Item = u8> + '_ {
     name.bytes()
