@@ -17,11 +17,12 @@
 //! roulette, unbiased. Shadow rays are blocked by every scene shape (glass included: caustics come
 //! only from scattered rays) and by the lights' own surfaces other than the target light's.
 //!
-//! Every random number comes from [`SampleKey::padded4`] and [`SampleKey::padded`], placed with
-//! the render's pixel sampler (Owen-scrambled Sobol by default): vertex `d` owns the dimension
-//! `2 + d·(1 + L)` (a 4D point: BSDF direction, lobe choice, roulette) and the next `L`, one per
-//! light for its samples (`L` lights); 0 and 1 are the film and lens positions. So a pixel's
-//! value depends only on (pixel, sample, dimension, seed).
+//! Every random number comes from a [`PathSampler`], placed with the render's pixel sampler
+//! (Owen-scrambled Sobol by default). Each vertex takes the same dimensions in the same order: a
+//! 4D point (BSDF direction, lobe choice, roulette), then one dimension per light for its samples,
+//! taken even where no light is sampled, so that vertex `d` of every camera sample of a pixel
+//! reads the same padded sets. So a pixel's value depends only on (pixel, sample, dimension,
+//! seed).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -29,7 +30,7 @@ use crate::accel::Accel;
 use crate::light::Light;
 use crate::math::{next_float_up, Vec2, Vec3};
 use crate::ray::{Hit, Ray, SpawnPoints};
-use crate::sampling::{Method, SampleKey};
+use crate::sampling::{Method, PathSampler, SampleKey};
 use crate::scene::Scene;
 
 use super::bsdf::Bsdf;
@@ -45,9 +46,6 @@ pub const ROULETTE_START: u32 = 8;
 
 /// Highest survival probability: even a white path ends at some point.
 pub const ROULETTE_MAX: f32 = 0.95;
-
-/// The first sample dimension the path uses (0 and 1 are the film and lens positions).
-const FIRST_DIMENSION: u64 = 2;
 
 /// Traces paths through one scene. One per worker.
 pub struct PathTracer<'a> {
@@ -106,7 +104,7 @@ impl<'a> PathTracer<'a> {
         let scene = self.scene;
         let lights = &scene.lights;
         let last_vertex = scene.nbounces.min(self.max_depth);
-        let dims_per_vertex = 1 + lights.len() as u64;
+        let mut sampler = PathSampler::new(key, self.method);
         let mut radiance = Vec3::ZERO;
         let mut beta = Vec3::ONE;
         let mut ray = *camera_ray;
@@ -157,14 +155,15 @@ impl<'a> PathTracer<'a> {
             };
             let bsdf = Bsdf::new(material, base, ns, n, front);
             let wo = -ray.dir;
-            let dims = FIRST_DIMENSION + depth as u64 * dims_per_vertex;
-            let spawn = hit.spawn_points();
-            if bsdf.has_non_delta() {
-                radiance += beta * self.direct(&bsdf, &hit, &spawn, wo, key, dims + 1);
-            }
             // One 4D point: the direction in its first two (best stratified) dimensions, the lobe
             // and the roulette in the other two.
-            let [u0, u1, u_lobe, u_roulette] = key.padded4(self.method, dims, 0, 1);
+            let [u0, u1, u_lobe, u_roulette] = sampler.get4();
+            let spawn = hit.spawn_points();
+            if bsdf.has_non_delta() {
+                radiance += beta * self.direct(&bsdf, &hit, &spawn, wo, &mut sampler);
+            } else {
+                sampler.skip(lights.len() as u64);
+            }
             let Some(s) = bsdf.sample(wo, u_lobe, Vec2::new(u0, u1)) else {
                 break;
             };
@@ -256,16 +255,16 @@ impl<'a> PathTracer<'a> {
         hit: &Hit,
         spawn: &SpawnPoints,
         wo: Vec3,
-        key: &SampleKey,
-        first_dim: u64,
+        sampler: &mut PathSampler,
     ) -> Vec3 {
         let lights = &self.scene.lights;
         let mut sum = Vec3::ZERO;
         for (li, light) in lights.iter().enumerate() {
             let count = self.light_samples(light);
             let share = 1.0 / count as f32;
+            let dimension = sampler.get_set();
             for j in 0..count {
-                let u = key.padded(self.method, first_dim + li as u64, j, count);
+                let u = dimension.point(j, count);
                 let s = light.sample(hit.point, u);
                 let to = s.position - hit.point;
                 let d2 = to.length_squared();

@@ -64,6 +64,7 @@ impl std::fmt::Display for Method {
 
 mod hash;
 mod key;
+mod path_sampler;
 mod sets;
 mod sobol;
 mod strata;
@@ -78,6 +79,7 @@ use strata::*;
 
 pub use hash::{hash, mix64, to_unit};
 pub use key::SampleKey;
+pub use path_sampler::{PaddedDimension, PathSampler};
 pub use sets::{CameraSamples, PointSet};
 pub use sobol::{sobol2, sobol4};
 pub use strata::permute;

@@ -635,3 +635,22 @@ fn concentric_disk_stays_inside() {
     }
     assert_eq!(concentric_disk(Vec2::splat(0.5)), Vec2::ZERO);
 }
+
+/// A path sampler reads the padded sets dimension by dimension, after the camera's two, and a
+/// skipped request keeps the dimensions of what follows.
+#[test]
+fn the_path_sampler_counts_dimensions_in_request_order() {
+    for method in [Method::Random, Method::Jittered, Method::Sobol] {
+        let key = SampleKey::new(3, 5, 2, 16, 7);
+        let mut sampler = PathSampler::new(&key, method);
+        assert_eq!(sampler.get4(), key.padded4(method, 2, 0, 1));
+        let light = sampler.get_set();
+        for j in 0..4 {
+            assert_eq!(light.point(j, 4), key.padded(method, 3, j, 4));
+        }
+        sampler.skip(2);
+        assert_eq!(sampler.dimension(), 6);
+        assert_eq!(sampler.get4(), key.padded4(method, 6, 0, 1));
+        assert_ne!(key.padded4(method, 6, 0, 1), key.padded4(method, 2, 0, 1));
+    }
+}
