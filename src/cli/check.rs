@@ -40,7 +40,7 @@ struct CheckCli {
     #[command(flatten)]
     load: LoadFlags,
     /// The render's worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    #[arg(long, value_parser = values::thread_count())]
     threads: Option<u64>,
     /// No estimate: load and report only.
     #[arg(long)]

@@ -40,7 +40,7 @@ struct RenderCli {
     #[command(flatten)]
     load: LoadFlags,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    #[arg(long, value_parser = values::thread_count())]
     threads: Option<u64>,
     /// Render only the pixels x ∈ [X0, X1), y ∈ [Y0, Y1) (origin top left) of the image, as an
     /// EXR tile for `raytracer merge` (the output must be .exr).

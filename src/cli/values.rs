@@ -85,6 +85,11 @@ pub fn pair(text: &str) -> Result<(u32, u32), String> {
     ))
 }
 
+/// The parser of every `--threads` flag: a whole number of worker threads, 1 to 4096.
+pub fn thread_count() -> clap::builder::RangedU64ValueParser<u64> {
+    clap::value_parser!(u64).range(1..=4096)
+}
+
 /// A rayon pool of `threads` workers (all cores for `None`).
 pub fn thread_pool(threads: Option<u64>) -> Result<rayon::ThreadPool, String> {
     rayon::ThreadPoolBuilder::new()

@@ -54,7 +54,7 @@ struct WatchCli {
     #[command(flatten)]
     load: LoadFlags,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    #[arg(long, value_parser = values::thread_count())]
     threads: Option<u64>,
 }
 

@@ -83,7 +83,7 @@ struct BatchCli {
     #[command(flatten)]
     image: ImageFlags,
     /// Worker threads shared by all scenes (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    #[arg(long, value_parser = values::thread_count())]
     threads: Option<u64>,
     /// How every scene is read: image size, asset folders, and the limits a scene must stay
     /// within (a scene over one fails alone).

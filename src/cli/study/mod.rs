@@ -83,7 +83,7 @@ struct StudyCli {
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     height: Option<u32>,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    #[arg(long, value_parser = values::thread_count())]
     threads: Option<u64>,
     /// A fast smoke run: at most 16 samples, a 256-sample reference, 48 pixels wide.
     #[arg(long)]
